@@ -1,0 +1,290 @@
+"""
+Pure-pursuit path tracking (book §9.3.1, (9.1)-(9.7), fig. 9.4).
+
+Each control period the tracker of Ollero (2001) finds the path point closest to the vehicle,
+takes the goal point a fixed arc length L (the look-ahead) further along the path, and steers
+along the circular arc through the vehicle and the goal point that is tangent to the vehicle's
+heading. In the vehicle frame that arc has curvature γ = 2 y / L², with y the goal point's
+lateral offset and L its distance (9.5), (9.7): a proportional law on the lateral offset with
+gain 2/L². The book's safeguards are kept: the goal point is clamped at the end of the path,
+and a goal point behind the vehicle (heading roughly opposite to the path) gets a larger
+curvature. The speed law (slow-down near the end, curvature-preserving limit on the angular
+velocity) follows the approach and curvature regulations of Nav2's Regulated Pure Pursuit.
+
+The book writes the law with the forward axis along y and the offset Δx positive to the right,
+γ = -2 Δx / L² (9.5)-(9.6); here frames are REP-103 (``base_link`` x forward, y left, θ from
+the x axis) and γ = 2 y / L², positive to the left.
+"""
+
+from dataclasses import dataclass, fields
+import math
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from robotica_ctrl.mobile.path import PathProjection, PolylinePath
+
+__all__ = ['PurePursuit', 'PurePursuitCommand', 'PurePursuitParams', 'curvature_to_point']
+
+
+def curvature_to_point(p: ArrayLike) -> float:
+    """
+    Return the pure-pursuit curvature [1/m] towards goal point ``p`` [m] in ``base_link``.
+
+    Book (9.5) with (9.7), REP-103 form: γ = 2 y / L² with L = |p|. The circle of this
+    curvature tangent to the x axis at the origin passes through ``p``; γ > 0 turns left.
+
+    Parameters
+    ----------
+    p : array_like, shape (2,)
+        Goal point (x, y) [m] in the vehicle frame ``base_link`` (x forward, y left).
+
+    Returns
+    -------
+    float
+        Curvature γ [1/m] (the inverse of the signed turning radius).
+
+    Raises
+    ------
+    ValueError
+        If ``p`` is not a finite (2,) vector or is the origin (L = 0).
+
+    >>> curvature_to_point([1.0, 1.0])
+    1.0
+
+    """
+    q = np.asarray(p, dtype=np.float64)
+    if q.shape != (2,) or not np.all(np.isfinite(q)):
+        raise ValueError(f'p must be a finite (2,) vector, got {p!r}')
+    lookahead_sq = float(q @ q)
+    if lookahead_sq == 0.0:
+        raise ValueError('the goal point is at the vehicle (L = 0): curvature undefined')
+    return 2.0 * float(q[1]) / lookahead_sq
+
+
+@dataclass(frozen=True)
+class PurePursuitParams:
+    """
+    Tunables of :class:`PurePursuit`; all must be positive and finite.
+
+    Raises
+    ------
+    ValueError
+        If a value is not positive and finite, or
+        ``min_approach_velocity > desired_linear_velocity``.
+
+    Examples
+    --------
+    >>> PurePursuitParams(lookahead_distance=1.0).lookahead_distance
+    1.0
+
+    """
+
+    lookahead_distance: float = 0.5  # L [m], book (9.7): arc length from closest to goal point
+    desired_linear_velocity: float = 0.5  # [m/s]
+    max_angular_velocity: float = 1.5  # [rad/s]
+    goal_tolerance: float = 0.05  # [m]
+    approach_distance: float = 0.5  # [m], slow down linearly within this distance of the end
+    min_approach_velocity: float = 0.05  # [m/s]
+    search_window: float = 2.0  # [m] window of the closest-point search around the progress
+
+    def __post_init__(self) -> None:
+        for field in fields(self):
+            value = getattr(self, field.name)
+            if not (math.isfinite(value) and value > 0.0):
+                raise ValueError(f'{field.name} must be positive and finite, got {value!r}')
+        if self.min_approach_velocity > self.desired_linear_velocity:
+            raise ValueError(
+                f'min_approach_velocity ({self.min_approach_velocity!r} m/s) must not exceed '
+                f'desired_linear_velocity ({self.desired_linear_velocity!r} m/s)')
+
+
+@dataclass(frozen=True)
+class PurePursuitCommand:
+    """
+    Output of one :meth:`PurePursuit.update`.
+
+    Attributes
+    ----------
+    linear : float
+        Forward velocity v [m/s] in ``base_link``, >= 0.
+    angular : float
+        Yaw rate ω = v γ [rad/s], > 0 counter-clockwise.
+    curvature : float
+        Commanded curvature γ [1/m], book (9.5); > 0 turns left.
+    goal_point : ndarray, shape (2,)
+        Goal point (x, y) [m] in the path frame; stored as a read-only float64 copy.
+    projection : PathProjection
+        The vehicle's projection onto the path.
+    finished : bool
+        Whether the end of the path has been reached (then ``linear == angular == 0``).
+
+    Examples
+    --------
+    >>> from robotica_ctrl.mobile.path import PathProjection
+    >>> proj = PathProjection(0.0, [0.0, 0.0], 0, 0.0, 0.0, 0.0, 0.0)
+    >>> PurePursuitCommand(0.5, 0.0, 0.0, [0.5, 0.0], proj, False).goal_point
+    array([0.5, 0. ])
+
+    """
+
+    linear: float
+    angular: float
+    curvature: float
+    goal_point: NDArray[np.float64]
+    projection: PathProjection
+    finished: bool
+
+    def __post_init__(self) -> None:
+        goal = np.array(self.goal_point, dtype=np.float64)
+        if goal.shape != (2,):
+            raise ValueError(f'goal_point must have shape (2,), got {goal.shape}')
+        goal.flags.writeable = False
+        object.__setattr__(self, 'goal_point', goal)
+
+
+class PurePursuit:
+    """
+    Pure-pursuit tracker of a :class:`PolylinePath` (book §9.3.1, fig. 9.4).
+
+    The state is the progress s [m] along the path: each update searches the closest point
+    only within ``params.search_window`` of it, so a closed path is followed lap by lap from
+    its start and the progress never falls back by more than the window. Before the first
+    update the progress is 0, so the vehicle is expected near the start of the path; the
+    search window should be shorter than half a closed path.
+
+    Parameters
+    ----------
+    path : PolylinePath
+        Reference path, in the frame of the poses given to :meth:`update` (e.g. ``odom``).
+    params : PurePursuitParams
+        Tunables; replace them at run time with :meth:`set_params`.
+
+    Examples
+    --------
+    >>> tracker = PurePursuit(PolylinePath([[0.0, 0.0], [5.0, 0.0]]), PurePursuitParams())
+    >>> cmd = tracker.update([0.0, 0.0, 0.0])
+    >>> cmd.linear, cmd.curvature, cmd.goal_point
+    (0.5, 0.0, array([0.5, 0. ]))
+
+    """
+
+    def __init__(self, path: PolylinePath, params: PurePursuitParams) -> None:
+        self._path = path
+        self._params = params
+        self._progress = 0.0
+        self._finished = False
+
+    @property
+    def path(self) -> PolylinePath:
+        """Return the reference path."""
+        return self._path
+
+    @property
+    def params(self) -> PurePursuitParams:
+        """Return the current tunables."""
+        return self._params
+
+    @property
+    def progress(self) -> float:
+        """Arc length [m] of the vehicle's last projection onto the path (0 after a reset)."""
+        return self._progress
+
+    def set_params(self, params: PurePursuitParams) -> None:
+        """
+        Use ``params`` from the next :meth:`update` on; the progress is kept.
+
+        >>> tracker = PurePursuit(PolylinePath([[0.0, 0.0], [5.0, 0.0]]), PurePursuitParams())
+        >>> tracker.set_params(PurePursuitParams(lookahead_distance=2.0))
+        >>> tracker.params.lookahead_distance
+        2.0
+
+        """
+        self._params = params
+
+    def reset(self) -> None:
+        """
+        Restart from the beginning of the path: progress 0, not finished.
+
+        >>> tracker = PurePursuit(PolylinePath([[0.0, 0.0], [5.0, 0.0]]), PurePursuitParams())
+        >>> _ = tracker.update([2.0, 0.0, 0.0])
+        >>> tracker.reset()
+        >>> tracker.progress
+        0.0
+
+        """
+        self._progress = 0.0
+        self._finished = False
+
+    def update(self, pose: ArrayLike) -> PurePursuitCommand:
+        """
+        Return the command for vehicle pose ``pose`` (one period of fig. 9.4).
+
+        Steps: (1) project the position onto the path within the search window around the
+        progress; (2) goal point at arc length s + L, clamped at the end of the path;
+        (3) curvature (9.5) to the goal point in ``base_link``; a goal point behind the
+        vehicle (x <= 0) gets the larger value sign(y) max(|2 y / L²|, 2 / L), turning left
+        when y = 0 (the book's safeguard); (4) speed v = desired, reduced linearly within
+        ``approach_distance`` of the end (not below ``min_approach_velocity``) and then so
+        that |v γ| <= ``max_angular_velocity`` with γ kept; ω = v γ. Once the remaining arc
+        length and the distance to the last point are both within ``goal_tolerance`` the
+        command is zero and stays so until :meth:`reset`.
+
+        Parameters
+        ----------
+        pose : array_like, shape (3,)
+            Vehicle pose (x [m], y [m], θ [rad]) in the path frame, θ from the x axis.
+
+        Returns
+        -------
+        PurePursuitCommand
+            Velocities, curvature, goal point and projection.
+
+        Raises
+        ------
+        ValueError
+            If ``pose`` is not a finite (3,) vector, or the goal point coincides with the
+            vehicle position (L = 0).
+
+        >>> tracker = PurePursuit(PolylinePath([[0.0, 0.0], [5.0, 0.0]]), PurePursuitParams())
+        >>> tracker.update([0.0, 0.5, 0.0]).curvature  # 2 (-0.5) / (0.5² + 0.5²)
+        -2.0
+
+        """
+        x = np.asarray(pose, dtype=np.float64)
+        if x.shape != (3,) or not np.all(np.isfinite(x)):
+            raise ValueError(f'pose must be a finite (3,) vector (x, y, theta), got {pose!r}')
+        params = self._params
+        path = self._path
+        projection = path.project(x[:2], s_hint=self._progress, window=params.search_window)
+        self._progress = projection.s
+        goal = path.point_at(projection.s + params.lookahead_distance)
+        remaining = path.length - projection.s
+        end_distance = float(np.hypot(*(path.points[-1] - x[:2])))
+        if max(remaining, end_distance) <= params.goal_tolerance:
+            self._finished = True
+        if self._finished:
+            return PurePursuitCommand(0.0, 0.0, 0.0, goal, projection, True)
+        gamma = _steering_curvature(goal - x[:2], float(x[2]))
+        v = params.desired_linear_velocity
+        if remaining < params.approach_distance:
+            v = max(v * remaining / params.approach_distance, params.min_approach_velocity)
+        if abs(v * gamma) > params.max_angular_velocity:
+            v = params.max_angular_velocity / abs(gamma)
+        return PurePursuitCommand(v, v * gamma, gamma, goal, projection, False)
+
+
+def _steering_curvature(offset: NDArray[np.float64], theta: float) -> float:
+    """
+    Return γ [1/m] towards a goal at ``offset`` [m] (path frame) from a vehicle heading θ.
+
+    Book (9.5)-(9.7) with the reversed-heading safeguard of §9.3.1 for a goal behind.
+    """
+    c, s = math.cos(theta), math.sin(theta)
+    p_base = np.array([c * offset[0] + s * offset[1], -s * offset[0] + c * offset[1]])
+    gamma = curvature_to_point(p_base)
+    if p_base[0] > 0.0:
+        return gamma
+    # Goal behind: sign(y) max(|2 y / L²|, 2 / L), which is sign(y) 2 / L as |y| <= L.
+    larger = 2.0 / math.hypot(p_base[0], p_base[1])
+    return larger if p_base[1] >= 0.0 else -larger

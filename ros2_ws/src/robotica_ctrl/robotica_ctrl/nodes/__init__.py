@@ -1,0 +1,3 @@
+"""ROS 2 node shells of robotica_ctrl."""
+
+__all__ = ['path_tracker']

@@ -1,0 +1,97 @@
+"""Conversions between ROS 2 messages and the NumPy values of the robotica cores.
+
+Planar poses are ``(x, y, theta)`` arrays [m, m, rad] in REP-103 (heading from the x axis,
+counter-clockwise); times are float seconds. Used by the nodes of every robotica package.
+"""
+import math
+
+from builtin_interfaces.msg import Time
+from geometry_msgs.msg import PoseStamped, Quaternion
+from nav_msgs.msg import Odometry, Path
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+
+def stamp_to_seconds(stamp: Time) -> float:
+    """Return a ``builtin_interfaces/Time`` as float seconds."""
+    return stamp.sec + stamp.nanosec * 1e-9
+
+
+def seconds_to_stamp(t: float) -> Time:
+    """Return float seconds ``t`` >= 0 as a ``builtin_interfaces/Time`` (rounded to 1 ns).
+
+    >>> seconds_to_stamp(1.5)
+    builtin_interfaces.msg.Time(sec=1, nanosec=500000000)
+    """
+    ns = round(t * 1e9)
+    return Time(sec=ns // 1_000_000_000, nanosec=ns % 1_000_000_000)
+
+
+def yaw_to_quaternion(yaw: float) -> Quaternion:
+    """Return the quaternion of a rotation by ``yaw`` [rad] about z."""
+    return Quaternion(z=math.sin(yaw / 2.0), w=math.cos(yaw / 2.0))
+
+
+def quaternion_to_yaw(q: Quaternion) -> float:
+    """Return the rotation about z [rad] of quaternion ``q`` (roll and pitch ignored).
+
+    >>> round(quaternion_to_yaw(yaw_to_quaternion(2.0)), 12)
+    2.0
+    """
+    return math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
+
+
+def pose2d_from_odometry(msg: Odometry) -> NDArray[np.float64]:
+    """Return the planar pose ``(x, y, theta)`` of an ``Odometry`` in its header frame."""
+    p = msg.pose.pose
+    return np.array([p.position.x, p.position.y, quaternion_to_yaw(p.orientation)])
+
+
+def odometry_message(t: float, frame_id: str, child_frame_id: str, pose: ArrayLike,
+                     twist: tuple[float, float]) -> Odometry:
+    """Build an ``Odometry``: pose ``(x, y, theta)`` in ``frame_id``, twist (v, w) in the child.
+
+    Parameters
+    ----------
+    t : stamp [s].
+    frame_id, child_frame_id : REP-105 frames, e.g. ``odom`` and ``base_link``.
+    pose : (3,) planar pose [m, m, rad].
+    twist : forward speed [m/s] and yaw rate [rad/s], in ``child_frame_id``.
+
+    """
+    x, y, theta = (float(v) for v in np.asarray(pose, dtype=float))
+    msg = Odometry()
+    msg.header.stamp = seconds_to_stamp(t)
+    msg.header.frame_id = frame_id
+    msg.child_frame_id = child_frame_id
+    msg.pose.pose.position.x = x
+    msg.pose.pose.position.y = y
+    msg.pose.pose.orientation = yaw_to_quaternion(theta)
+    msg.twist.twist.linear.x = float(twist[0])
+    msg.twist.twist.angular.z = float(twist[1])
+    return msg
+
+
+def path_points(msg: Path) -> NDArray[np.float64]:
+    """Return the positions of a ``nav_msgs/Path`` as an (N, 2) array [m]."""
+    return np.array([[p.pose.position.x, p.pose.position.y] for p in msg.poses],
+                    dtype=float).reshape(-1, 2)
+
+
+def path_message(points: ArrayLike, frame_id: str, t: float = 0.0) -> Path:
+    """Build a ``nav_msgs/Path`` through (N, 2) ``points`` [m], each pose facing the next point."""
+    pts = np.asarray(points, dtype=float).reshape(-1, 2)
+    steps = np.diff(pts, axis=0)
+    headings = np.arctan2(steps[:, 1], steps[:, 0]) if len(steps) else np.zeros(0)
+    headings = np.append(headings, headings[-1] if len(headings) else 0.0)
+    msg = Path()
+    msg.header.stamp = seconds_to_stamp(t)
+    msg.header.frame_id = frame_id
+    for (x, y), yaw in zip(pts, headings):
+        pose = PoseStamped()
+        pose.header = msg.header
+        pose.pose.position.x = float(x)
+        pose.pose.position.y = float(y)
+        pose.pose.orientation = yaw_to_quaternion(float(yaw))
+        msg.poses.append(pose)
+    return msg

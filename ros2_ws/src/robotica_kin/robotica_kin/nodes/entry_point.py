@@ -1,0 +1,48 @@
+"""The ``main()`` of every robotica node: init, build, spin, shut down cleanly (Jazzy).
+
+A node whose parameters are invalid raises ``ValueError`` while it is built; that is logged as
+one clear line and the process exits with code 2, without a traceback. Ctrl-C (SIGINT) and
+SIGTERM end the process with code 0 (STYLE.md §5, shutdown).
+"""
+import sys
+from typing import Callable, Optional
+
+import rclpy
+from rclpy.executors import Executor, ExternalShutdownException, SingleThreadedExecutor
+from rclpy.node import Node
+from rclpy.signals import SignalHandlerOptions
+
+
+def _spin_forever(node: Node, executor: Executor) -> int:
+    executor.spin()
+    return 0
+
+
+def run_node(factory: Callable[[], Node], args: Optional[list[str]] = None,
+             run: Callable[[Node, Executor], int] = _spin_forever,
+             executor_factory: Callable[[], Executor] = SingleThreadedExecutor,
+             signal_handler_options: SignalHandlerOptions = SignalHandlerOptions.ALL) -> None:
+    """Build the node with ``factory``, run it with ``run(node, executor)`` and exit.
+
+    ``run`` returns the exit code; the default spins until shutdown. A node that must act on
+    SIGINT/SIGTERM itself (e.g. drain and close a file) passes ``SignalHandlerOptions.NO``.
+    """
+    rclpy.init(args=args, signal_handler_options=signal_handler_options)
+    code = 0
+    node = None
+    try:
+        node = factory()
+        executor = executor_factory()
+        executor.add_node(node)
+        code = run(node, executor)
+    except ValueError as err:
+        name = getattr(factory, '__name__', 'node')
+        rclpy.logging.get_logger(name).error(f'invalid configuration: {err}')
+        code = 2
+    except (KeyboardInterrupt, ExternalShutdownException):
+        pass
+    finally:
+        if node is not None:
+            node.destroy_node()
+        rclpy.try_shutdown()
+    sys.exit(code)

@@ -1,0 +1,251 @@
+"""Run a scenario: every node in its own process, the whole run recorded to a bag.
+
+Starts the recorder, the path publisher, the encoder emulator, the odometry, the path tracker
+and the simulator with the scenario's parameters; waits until the recorder has matched every
+topic; starts the simulation; waits for its end time; stops every process (also on Ctrl-C or
+when a node dies) and prints the bag's path and a one-line summary.
+"""
+import argparse
+import dataclasses
+import json
+import os
+from pathlib import Path
+import random
+import shutil
+import signal
+import sys
+import time
+
+from ament_index_python.packages import get_package_prefix, PackageNotFoundError
+import rclpy
+from rclpy.executors import SingleThreadedExecutor
+from rclpy.qos import QoSProfile, ReliabilityPolicy
+from rclpy.signals import SignalHandlerOptions
+from robotica_sim.process_supervisor import child_environment, ProcessSupervisor
+from robotica_sim.run_plan import NodeSpec, plan_run, RECORDED_TOPICS
+from robotica_sim.run_summary import summarize_bag
+from robotica_sim.scenario import load_scenario, ScenarioError
+from rosgraph_msgs.msg import Clock
+from std_srvs.srv import Trigger
+import yaml
+
+HELP = 'run a scenario and record it'
+EPILOG = '''examples:
+  robotica run demo                        the shipped demo scenario, lockstep
+  robotica run demo --pacing realtime      watch it at wall-clock speed
+  robotica run my_scenario.yaml --json     machine-readable summary on stdout
+'''
+STOP_ORDER = ['simulator', 'path_tracker', 'odometry', 'encoder_emulator', 'path_publisher',
+              'recorder']
+
+
+class RunFailed(Exception):
+    """The run could not be completed; the message says why."""
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    """Add the arguments of ``robotica run``."""
+    parser.add_argument('scenario', help='scenario YAML file, or the name of a shipped one')
+    parser.add_argument('--output-dir', type=Path, default=None,
+                        help='run directory to create (default: runs/<scenario>-<time>)')
+    parser.add_argument('--pacing', choices=['lockstep', 'realtime'], default=None,
+                        help="override the scenario's pacing")
+    parser.add_argument('--duration', type=float, default=None,
+                        help="override the scenario's duration [s, simulated]")
+    parser.add_argument('--domain-id', type=int, default=None,
+                        help='ROS_DOMAIN_ID of the run (default: $ROS_DOMAIN_ID, else random)')
+    parser.add_argument('--discovery-timeout', type=float, default=30.0,
+                        help='longest wait for the nodes to discover each other [s]')
+    parser.add_argument('--timeout', type=float, default=None,
+                        help='longest wall-clock time of the run [s] (default: 120 + 10 x '
+                        'duration)')
+    parser.add_argument('--json', action='store_true', help='print the summary as JSON')
+    parser.add_argument('--quiet', action='store_true', help='no progress on stderr')
+
+
+def _log(args: argparse.Namespace, text: str) -> None:
+    if not args.quiet:
+        print(f'[robotica run] {text}', file=sys.stderr, flush=True)
+
+
+def _executable(spec: NodeSpec) -> str:
+    try:
+        prefix = get_package_prefix(spec.package)
+    except PackageNotFoundError:
+        raise RunFailed(f'package {spec.package} is not installed: source scripts/env.sh '
+                        '(or your workspace) first') from None
+    path = Path(prefix) / 'lib' / spec.package / spec.executable
+    if not os.access(path, os.X_OK):
+        raise RunFailed(f'no executable {path}; rebuild the workspace (scripts/setup.sh)')
+    return str(path)
+
+
+def _argv(spec: NodeSpec, params_file: Path) -> list[str]:
+    argv = [_executable(spec), '--ros-args', '-r', f'__node:={spec.name}',
+            '--params-file', str(params_file)]
+    for source, target in spec.remappings.items():
+        argv += ['-r', f'{source}:={target}']
+    return argv
+
+
+def _prepare(args: argparse.Namespace, scenario, run_dir: Path) -> list[NodeSpec]:
+    nodes = plan_run(scenario)
+    bag = run_dir / 'bag'
+    scenario_copy = run_dir / 'scenario.yaml'
+    params_file = run_dir / 'params.yaml'
+    shutil.copy(scenario.source, scenario_copy)
+    recorder = NodeSpec('robotica_sim', 'recorder', 'recorder', {
+        'output': str(bag), 'topics': list(RECORDED_TOPICS),
+        'metadata_files': [str(scenario_copy), str(params_file)]})
+    nodes = [recorder] + nodes
+    params = {}
+    for spec in nodes:
+        sim_time = spec.name != 'simulator'   # the simulator owns the time
+        params[spec.name] = {'ros__parameters': {'use_sim_time': sim_time, **spec.parameters}}
+    params_file.write_text(yaml.safe_dump(params, sort_keys=False))
+    return nodes
+
+
+def _call(executor, node, service: str, deadline: float) -> Trigger.Response:
+    client = node.create_client(Trigger, service)
+    try:
+        while not client.wait_for_service(timeout_sec=0.1):
+            executor.spin_once(timeout_sec=0.0)
+            if time.monotonic() > deadline:
+                raise RunFailed(f'service {service} did not appear')
+        future = client.call_async(Trigger.Request())
+        executor.spin_until_future_complete(future, timeout_sec=max(0.1, deadline -
+                                                                   time.monotonic()))
+        if not future.done():
+            raise RunFailed(f'service {service} did not answer')
+        return future.result()
+    finally:
+        node.destroy_client(client)
+
+
+def _check_alive(supervisor: ProcessSupervisor, names: list[str]) -> None:
+    dead = {n: c for n, c in supervisor.exited().items() if n in names}
+    if dead:
+        name, code = next(iter(dead.items()))
+        raise RunFailed(f'node {name} exited with code {code} before the end:\n'
+                        + supervisor.tail(name))
+
+
+def _wait_ready(args, executor, node, supervisor, names) -> None:
+    deadline = time.monotonic() + args.discovery_timeout
+    while True:
+        _check_alive(supervisor, names)
+        answer = _call(executor, node, '/recorder/ready', deadline)
+        if answer.success:
+            return
+        if time.monotonic() > deadline:
+            raise RunFailed(f'discovery incomplete after {args.discovery_timeout} s: '
+                            f'{answer.message}')
+        executor.spin_once(timeout_sec=0.2)
+
+
+def _progress(args, t: float, duration: float) -> None:
+    if args.quiet or not sys.stderr.isatty():
+        return
+    done = min(1.0, t / duration)
+    bar = '#' * int(30 * done)
+    print(f'\r[robotica run] [{bar:<30}] {t:7.2f} / {duration:.2f} s', end='',
+          file=sys.stderr, flush=True)
+
+
+def _simulate(args, scenario, run_dir: Path, supervisor: ProcessSupervisor) -> float:
+    """Start the nodes, run the simulation to its end; return the wall-clock run time [s]."""
+    nodes = _prepare(args, scenario, run_dir)
+    names = [spec.name for spec in nodes]
+    for spec in nodes:
+        supervisor.start(spec.name, _argv(spec, run_dir / 'params.yaml'))
+    _log(args, f'started {len(nodes)} nodes (domain {os.environ["ROS_DOMAIN_ID"]}), '
+               'waiting for discovery')
+    node = rclpy.create_node('robotica_run')
+    executor = SingleThreadedExecutor()
+    executor.add_node(node)
+    sim_time = [0.0]
+    node.create_subscription(
+        Clock, '/clock', lambda m: sim_time.__setitem__(0, m.clock.sec + m.clock.nanosec * 1e-9),
+        QoSProfile(depth=1, reliability=ReliabilityPolicy.BEST_EFFORT))
+    try:
+        _wait_ready(args, executor, node, supervisor, names)
+        _call(executor, node, '/simulator/start', time.monotonic() + args.discovery_timeout)
+        _log(args, f'running {scenario.name}: {scenario.duration} s simulated, '
+                   f'{scenario.pacing} pacing')
+        start = time.monotonic()
+        timeout = args.timeout or 120.0 + 10.0 * scenario.duration
+        while supervisor.returncode('simulator') is None:
+            executor.spin_once(timeout_sec=0.1)
+            _progress(args, sim_time[0], scenario.duration)
+            _check_alive(supervisor, [n for n in names if n != 'simulator'])
+            if time.monotonic() - start > timeout:
+                raise RunFailed(f'the run took longer than {timeout:.0f} s wall clock')
+        wall = time.monotonic() - start
+        if not args.quiet and sys.stderr.isatty():
+            print(file=sys.stderr)
+        if supervisor.returncode('simulator') != 0:
+            raise RunFailed('the simulator failed:\n' + supervisor.tail('simulator'))
+        return wall
+    finally:
+        executor.shutdown()
+        node.destroy_node()
+
+
+def _raise_interrupt(signum, frame):
+    raise KeyboardInterrupt
+
+
+def main(args: argparse.Namespace) -> int:
+    """Run the scenario; return the exit code."""
+    try:
+        scenario = load_scenario(args.scenario)
+        overrides = {k: v for k, v in (('pacing', args.pacing), ('duration', args.duration))
+                     if v is not None}
+        scenario = dataclasses.replace(scenario, **overrides)
+    except ScenarioError as err:
+        print(f'robotica run: error: {err}', file=sys.stderr)
+        return 2
+    domain = args.domain_id if args.domain_id is not None else int(
+        os.environ.get('ROS_DOMAIN_ID') or random.randint(1, 101))
+    if not 0 <= domain <= 101:
+        print(f'robotica run: error: domain id must be in 0..101, got {domain}', file=sys.stderr)
+        return 2
+    os.environ.update(child_environment(domain))
+    run_dir = args.output_dir or Path('runs') / (
+        f'{scenario.name}-{time.strftime("%Y%m%d-%H%M%S")}')
+    try:
+        run_dir.mkdir(parents=True, exist_ok=False)
+    except FileExistsError:
+        print(f'robotica run: error: {run_dir} exists already', file=sys.stderr)
+        return 2
+    supervisor = ProcessSupervisor(run_dir / 'logs', dict(os.environ))
+    signal.signal(signal.SIGTERM, _raise_interrupt)
+    rclpy.init(signal_handler_options=SignalHandlerOptions.NO)
+    code = 0
+    try:
+        _simulate(args, scenario, run_dir, supervisor)
+    except RunFailed as err:
+        print(f'robotica run: failed: {err}', file=sys.stderr)
+        code = 1
+    except KeyboardInterrupt:
+        print('\nrobotica run: interrupted; stopping the nodes', file=sys.stderr)
+        code = 130
+    finally:
+        codes = supervisor.stop_all(STOP_ORDER)
+        rclpy.try_shutdown()
+    if codes.get('recorder') not in (0, None):
+        print(f'robotica run: the recorder exited with {codes["recorder"]}:\n'
+              + supervisor.tail('recorder'), file=sys.stderr)
+        code = code or 1
+    bag = run_dir / 'bag'
+    if not (bag / 'metadata.yaml').is_file():
+        print(f'robotica run: no bag was written; logs in {run_dir / "logs"}', file=sys.stderr)
+        return code or 1
+    summary = summarize_bag(bag)
+    if args.json:
+        print(json.dumps({**summary.as_dict(), 'exit_code': code}))
+    else:
+        print(f'bag: {bag}')
+        print(f'{scenario.name}: {summary.line()}')
+    return code

@@ -1,0 +1,47 @@
+"""Path publisher node: a reference path from parameters -> latched ``path`` (nav_msgs/Path).
+
+The path is the polyline through ``x``/``y`` [m] in ``frame_id``; each pose faces the next point.
+Published once with a reliable, transient-local QoS, so a tracker that starts later still gets it.
+"""
+from nav_msgs.msg import Path
+import numpy as np
+from rclpy.exceptions import ParameterUninitializedException
+from rclpy.node import Node
+from rclpy.parameter import Parameter
+from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
+from rcl_interfaces.msg import ParameterDescriptor
+from robotica_kin.nodes.convert import path_message
+from robotica_kin.nodes.entry_point import run_node
+from robotica_kin.nodes.parameters import declare
+
+LATCHED_QOS = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,
+                         durability=DurabilityPolicy.TRANSIENT_LOCAL)
+
+
+class PathPublisherNode(Node):
+    """Publish one path given as parameters."""
+
+    def __init__(self) -> None:
+        super().__init__('path_publisher')
+        coords = []
+        for axis in ('x', 'y'):
+            self.declare_parameter(axis, Parameter.Type.DOUBLE_ARRAY, ParameterDescriptor(
+                description=f'{axis} coordinates of the path points [m]', read_only=True))
+            try:
+                coords.append(np.asarray(self.get_parameter(axis).value, dtype=float))
+            except ParameterUninitializedException:
+                raise ValueError(f'parameter {axis!r} (path points) is required') from None
+        frame = declare(self, 'frame_id', 'odom', 'Frame of the path', read_only=True)
+        x, y = coords
+        if x.shape != y.shape or x.size < 2:
+            raise ValueError(f'x and y need the same length >= 2, got {x.size} and {y.size}')
+        if not (np.all(np.isfinite(x)) and np.all(np.isfinite(y))):
+            raise ValueError('path coordinates must be finite')
+        self._pub = self.create_publisher(Path, 'path', LATCHED_QOS)
+        self._pub.publish(path_message(np.column_stack([x, y]), frame))
+        self.get_logger().info(f'published a path of {x.size} points in frame {frame!r}')
+
+
+def main(args=None) -> None:
+    """Run the path publisher until Ctrl-C."""
+    run_node(PathPublisherNode, args)

@@ -1,0 +1,33 @@
+from glob import glob
+
+from setuptools import find_packages, setup
+
+package_name = 'robotica_sim'
+
+setup(
+    name=package_name,
+    version='0.1.0',
+    packages=find_packages(exclude=['test', 'test.*']),
+    data_files=[
+        ('share/ament_index/resource_index/packages', ['resource/' + package_name]),
+        ('share/' + package_name, ['package.xml']),
+        ('share/' + package_name + '/scenarios', glob('scenarios/*.yaml')),
+    ],
+    install_requires=['setuptools'],
+    zip_safe=True,
+    maintainer='robotica developers',
+    maintainer_email='robotica@example.com',
+    description='Simulation side of robotica: integrator simulators, sensor emulators, odometry, the bag recorder, scenarios and the robotica command.',
+    license='Apache-2.0',
+    tests_require=['pytest'],
+    entry_points={
+        'console_scripts': [
+            'simulator = robotica_sim.nodes.simulator:main',
+            'encoder_emulator = robotica_sim.nodes.encoder_emulator:main',
+            'odometry = robotica_sim.nodes.odometry:main',
+            'path_publisher = robotica_sim.nodes.path_publisher:main',
+            'recorder = robotica_sim.nodes.recorder:main',
+            'robotica = robotica_sim.cli.main:main',
+        ],
+    },
+)

@@ -1,0 +1,11 @@
+#!/usr/bin/env bash
+# Set everything up (if needed) and run the whole test suite. CI runs exactly this (.ci/run).
+#   scripts/test.sh                 all tests
+#   scripts/test.sh -m "not slow"   skip the end-to-end runs; any pytest arguments pass through
+set -eo pipefail
+ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+bash "$ROOT/scripts/setup.sh"
+# shellcheck disable=SC1091
+. "$ROOT/scripts/env.sh"
+cd "$ROOT"
+exec python -m pytest "$@"
