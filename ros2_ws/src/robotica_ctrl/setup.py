@@ -14,7 +14,9 @@ setup(
     zip_safe=True,
     maintainer='robotica developers',
     maintainer_email='robotica@example.com',
-    description='Controllers of robotica: trajectories, joint controllers, mobile path trackers and planners, each a pure core with a thin ROS 2 node.',
+    description=(
+        'Controllers of robotica: trajectories, joint controllers, mobile path trackers '
+        'and planners, each a pure core with a thin ROS 2 node.'),
     license='Apache-2.0',
     tests_require=['pytest'],
     entry_points={

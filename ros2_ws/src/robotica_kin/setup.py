@@ -14,7 +14,9 @@ setup(
     zip_safe=True,
     maintainer='robotica developers',
     maintainer_email='robotica@example.com',
-    description='Kinematic and dynamic models of robotica: transforms, DH models, mobile-robot models, odometry maths (pure Python/NumPy, Pinocchio for dynamics).',
+    description=(
+        'Kinematic and dynamic models of robotica: transforms, DH models, mobile-robot '
+        'models, odometry maths (pure Python/NumPy, Pinocchio for dynamics).'),
     license='Apache-2.0',
     tests_require=['pytest'],
     entry_points={

@@ -17,7 +17,9 @@ setup(
     zip_safe=True,
     maintainer='robotica developers',
     maintainer_email='robotica@example.com',
-    description='Simulation side of robotica: integrator simulators, sensor emulators, odometry, the bag recorder, scenarios and the robotica command.',
+    description=(
+        'Simulation side of robotica: integrator simulators, sensor emulators, odometry, '
+        'the bag recorder, scenarios and the robotica command.'),
     license='Apache-2.0',
     tests_require=['pytest'],
     entry_points={

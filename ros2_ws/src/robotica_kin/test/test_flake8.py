@@ -1,4 +1,4 @@
-"""Style check of this package with ament_flake8 (max line 99, single quotes, Google import order)."""
+"""Style check of this package with ament_flake8 (line 99, single quotes, Google imports)."""
 from pathlib import Path
 
 from ament_flake8.main import main_with_errors

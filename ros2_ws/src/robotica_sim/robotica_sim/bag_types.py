@@ -1,4 +1,5 @@
-"""Message definitions for bags: a rosbags type store that also knows this workspace's types.
+"""
+Message definitions for bags: a rosbags type store that also knows this workspace's types.
 
 rosbag2 stores, for every topic, the full ``ros2msg`` definition of its type and its RIHS01 hash.
 ``rosbags`` ships the standard Jazzy types; types of other packages (``robotica_msgs``, a
@@ -17,7 +18,8 @@ def jazzy_typestore() -> Typestore:
 
 
 def ensure_type(typestore: Typestore, msgtype: str) -> None:
-    """Register ``msgtype`` (``pkg/msg/Name``) and its package's messages if unknown.
+    """
+    Register ``msgtype`` (``pkg/msg/Name``) and its package's messages if unknown.
 
     Raises KeyError when the package or its ``.msg`` file cannot be found.
     """

@@ -1,4 +1,5 @@
-"""Kinematic simulation of a differential-drive robot at a fixed step (the simulator's core).
+"""
+Kinematic simulation of a differential-drive robot at a fixed step (the simulator's core).
 
 The robot follows the differential-drive model of book §4.7.4 (4.109)-(4.114), in REP-103 form,
 integrated with classic RK4 over each step with the command held constant (zero-order hold).
@@ -35,17 +36,22 @@ class SimulationParams:
 
 
 class DiffDriveSimulation:
-    """State and stepping of one simulated differential-drive robot.
+    """
+    State and stepping of one simulated differential-drive robot.
 
     The state is ``[x, y, theta, wheel_angle_left, wheel_angle_right]`` [m, m, rad, rad, rad],
     world frame, REP-103. Time starts at 0 and advances by ``step_period`` per :meth:`step`.
 
-    >>> sim = DiffDriveSimulation(DifferentialDriveParams(0.1, 0.4), SimulationParams(0.1))
+    Driving at 0.5 m/s with a command that goes stale after 0.5 s: six steps of 0.1 s move the
+    robot, then it brakes.
+
+    >>> robot = DifferentialDriveParams(wheel_radius=0.1, wheel_separation=0.4)
+    >>> sim = DiffDriveSimulation(robot, SimulationParams(step_period=0.1, cmd_timeout=0.5))
     >>> sim.set_command(0.5, 0.0, t=0.0)
     >>> for _ in range(10):
     ...     sim.step()
     >>> [round(float(v), 9) for v in sim.pose]
-    [0.5, 0.0, 0.0]
+    [0.3, 0.0, 0.0]
     """
 
     def __init__(self, robot: DifferentialDriveParams, params: SimulationParams,
@@ -63,37 +69,38 @@ class DiffDriveSimulation:
 
     @property
     def t(self) -> float:
-        """Simulated time [s] of the current state."""
+        """Return the simulated time [s] of the current state."""
         return self._step * self._params.step_period
 
     @property
     def step_count(self) -> int:
-        """Steps taken since the start."""
+        """Return the number of steps taken since the start."""
         return self._step
 
     @property
     def pose(self) -> NDArray[np.float64]:
-        """Pose ``(x, y, theta)`` [m, m, rad] in the world frame, theta wrapped to (-pi, pi]."""
+        """Return the pose ``(x, y, theta)`` [m, m, rad], world frame, theta in (-pi, pi]."""
         x, y, theta = self._state[:3]
         return np.array([x, y, math.atan2(math.sin(theta), math.cos(theta))])
 
     @property
     def wheel_angles(self) -> NDArray[np.float64]:
-        """Cumulative wheel angles (left, right) [rad]."""
+        """Return the cumulative wheel angles (left, right) [rad]."""
         return self._state[3:].copy()
 
     @property
     def wheel_speeds(self) -> NDArray[np.float64]:
-        """Wheel speeds (left, right) [rad/s] applied during the last step."""
+        """Return the wheel speeds (left, right) [rad/s] applied during the last step."""
         return self._wheel_speeds.copy()
 
     @property
     def twist(self) -> tuple[float, float]:
-        """Body twist (v [m/s], w [rad/s]) applied during the last step, base frame."""
+        """Return the body twist of the last step: v [m/s] and w [rad/s], base frame."""
         return wheel_speeds_to_twist(self._robot, *self._wheel_speeds)
 
     def set_command(self, v: float, w: float, t: float) -> None:
-        """Take the command (v [m/s], w [rad/s]) received at simulated time ``t`` [s].
+        """
+        Take the command (v [m/s], w [rad/s]) received at simulated time ``t`` [s].
 
         Raises ValueError for a non-finite command (the caller keeps the safe stop).
         """

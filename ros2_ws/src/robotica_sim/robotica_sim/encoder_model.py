@@ -1,4 +1,5 @@
-"""Incremental wheel-encoder model: wheel angle -> cumulative tick count.
+"""
+Incremental wheel-encoder model: wheel angle -> cumulative tick count.
 
 Book §7.3.2 and the course slides (Part 13.6 of the seed catalogue): a counter of an
 incremental encoder with ``ticks_per_revolution`` counts per wheel revolution (pulses per
@@ -10,7 +11,8 @@ import math
 
 
 def quantize_ticks(wheel_angle: float, ticks_per_revolution: int) -> int:
-    """Return the cumulative count [ticks] of an encoder on a wheel at ``wheel_angle`` [rad].
+    """
+    Return the cumulative count [ticks] of an encoder on a wheel at ``wheel_angle`` [rad].
 
     Raises ValueError for a non-finite angle or ticks_per_revolution < 1.
 

@@ -1,4 +1,5 @@
-"""Start, watch and stop the node processes of a run; none is left behind.
+"""
+Start, watch and stop the node processes of a run; none is left behind.
 
 Each node runs in its own session (Ctrl-C in the terminal reaches only the supervising
 command, which then stops the nodes in order) and asks the kernel for SIGTERM if the supervisor

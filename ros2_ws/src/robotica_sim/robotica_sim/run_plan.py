@@ -1,4 +1,5 @@
-"""The plan of a run: which nodes a scenario starts, with which parameters and remappings.
+"""
+The plan of a run: which nodes a scenario starts, with which parameters and remappings.
 
 :func:`plan_run` turns a :class:`~robotica_sim.scenario.Scenario` into node specifications (one
 process each) and the list of topics the recorder must record. It is pure data; starting the

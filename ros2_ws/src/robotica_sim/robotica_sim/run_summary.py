@@ -1,4 +1,5 @@
-"""The one-line summary of a run, computed from its bag.
+"""
+The one-line summary of a run, computed from its bag.
 
 Duration from ``/clock``; real-time factor and lockstep timeouts from the simulator's last
 ``~/status``; cross-track error of the ground truth (``/ground_truth/odom``) against the

@@ -1,4 +1,5 @@
-"""Scenarios: what a run is made of (robot, path, sensors, tracker, pacing, seed, duration).
+"""
+Scenarios: what a run is made of (robot, path, sensors, tracker, pacing, seed, duration).
 
 A scenario is a YAML file, validated strictly when loaded: an unknown key, a value of the wrong
 type or out of range gives a :class:`ScenarioError` naming the key, never a silently ignored
@@ -23,7 +24,7 @@ class ScenarioError(ValueError):
 class RobotSpec:
     """The simulated robot (book §4.7.4, differential drive)."""
 
-    type: str = 'differential_drive'
+    type: str = 'differential_drive'  # noqa: A003 (the scenario key)
     wheel_radius: float = 0.1                      # c [m]
     wheel_separation: float = 0.4                  # b [m]
     initial_pose: tuple[float, ...] = (0.0, 0.0, 0.0)   # x [m], y [m], theta [rad] REP-103

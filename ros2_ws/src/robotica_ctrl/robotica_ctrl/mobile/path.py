@@ -22,6 +22,7 @@ from numpy.typing import ArrayLike, NDArray
 __all__ = ['PathProjection', 'PolylinePath']
 
 _CLOSED_TOLERANCE = 1e-9  # [m] a path whose first and last points are this close is closed
+_DUPLICATE_TOLERANCE = 1e-12  # [m] a point this close to its predecessor is a duplicate
 _TIE_TOLERANCE = 1e-12  # [m] distances this close are a tie, resolved towards the smaller s
 
 
@@ -42,8 +43,10 @@ class PathProjection:
         Heading of that segment [rad], from the x axis, counter-clockwise.
     cross_track : float
         Signed lateral offset of the query point [m], > 0 when it is left of the path.
-        Beside the path ``|cross_track| == distance``; beyond an end of an open path it is
-        the offset from the end segment's line.
+        Beside the path ``|cross_track| == distance`` (at a vertex the side is that of the
+        bisector of its two segments; straight beyond a cusp, where the path reverses, it
+        counts as left); beyond an end of an open path it is the offset from the end
+        segment's line.
     along_track : float
         Offset of the query point along the end segment beyond an end of an open path [m]:
         < 0 before the start, > 0 after the end, 0 beside the path (always 0 when closed).
@@ -99,7 +102,8 @@ class PolylinePath:
     ----------
     points : array_like, shape (N, 2)
         Vertices (x, y) [m] in the path frame (e.g. ``odom``), in the order of travel;
-        N >= 2, finite. Consecutive duplicate points are dropped.
+        N >= 2, finite. Consecutive duplicates (a point within 1e-12 m of its predecessor)
+        are dropped.
 
     Raises
     ------
@@ -128,7 +132,7 @@ class PolylinePath:
         if not np.all(np.isfinite(p)):
             raise ValueError('points must be finite')
         keep = np.ones(len(p), dtype=bool)
-        keep[1:] = np.any(p[1:] != p[:-1], axis=1)
+        keep[1:] = np.hypot(*np.diff(p, axis=0).T) > _DUPLICATE_TOLERANCE
         p = p[keep]
         if len(p) < 2:
             raise ValueError(f'a path needs at least 2 distinct points, got {len(p)}')
@@ -257,7 +261,7 @@ class PolylinePath:
         b = self._points[first + 1:stop + 1]
         s0 = self._s[first:stop]
         seg_len = self._seg_len[first:stop]
-        t = np.einsum('ij,ij->i', q - a, b - a) / seg_len ** 2
+        t = np.einsum('ij,ij->i', q - a, self._tangents[first:stop]) / seg_len
         t = np.clip(np.clip(t, (lo - s0) / seg_len, (hi - s0) / seg_len), 0.0, 1.0)
         closest = (1.0 - t)[:, np.newaxis] * a + t[:, np.newaxis] * b
         dist = np.hypot(q[0] - closest[:, 0], q[1] - closest[:, 1])
@@ -309,10 +313,13 @@ class PolylinePath:
             return cross, min(along, 0.0)
         elif neighbour > last:
             return cross, max(along, 0.0)
-        # At a vertex: the side is taken from the bisector of the two segments' tangents.
+        # At a vertex the side is that of the bisector of the two tangents; at a cusp, where
+        # the bisector vanishes, that of the segment; straight beyond a cusp, left.
         bisector = tangent + self._tangents[neighbour]
         side = float(bisector[0] * delta[1] - bisector[1] * delta[0])
-        return (math.copysign(distance, side) if side != 0.0 else cross), 0.0
+        if side == 0.0:
+            side = cross if cross != 0.0 else 1.0
+        return math.copysign(distance, side), 0.0
 
 
 def _read_only(a: NDArray[np.float64]) -> NDArray[np.float64]:

@@ -187,7 +187,7 @@ class PurePursuit:
 
     @property
     def progress(self) -> float:
-        """Arc length [m] of the vehicle's last projection onto the path (0 after a reset)."""
+        """Return the arc length [m] of the last projection onto the path (0 after a reset)."""
         return self._progress
 
     def set_params(self, params: PurePursuitParams) -> None:
@@ -221,10 +221,12 @@ class PurePursuit:
         Return the command for vehicle pose ``pose`` (one period of fig. 9.4).
 
         Steps: (1) project the position onto the path within the search window around the
-        progress; (2) goal point at arc length s + L, clamped at the end of the path;
-        (3) curvature (9.5) to the goal point in ``base_link``; a goal point behind the
-        vehicle (x <= 0) gets the larger value sign(y) max(|2 y / L²|, 2 / L), turning left
-        when y = 0 (the book's safeguard); (4) speed v = desired, reduced linearly within
+        progress; (2) goal point at arc length s + ``lookahead_distance``, clamped at the
+        end of the path; (3) curvature (9.5) γ = 2 y / D² to the goal point (x, y) in
+        ``base_link``, D = |(x, y)| being the book's L of (9.7); a goal point behind the
+        vehicle (x <= 0, heading roughly opposite to the path) gets the larger value
+        sign(y) max(|2 y / D²|, 2 / D) = sign(y) 2 / D, turning left when y = 0 (the book's
+        safeguard); (4) speed v = desired, reduced linearly within
         ``approach_distance`` of the end (not below ``min_approach_velocity``) and then so
         that |v γ| <= ``max_angular_velocity`` with γ kept; ω = v γ. Once the remaining arc
         length and the distance to the last point are both within ``goal_tolerance`` the
@@ -285,6 +287,6 @@ def _steering_curvature(offset: NDArray[np.float64], theta: float) -> float:
     gamma = curvature_to_point(p_base)
     if p_base[0] > 0.0:
         return gamma
-    # Goal behind: sign(y) max(|2 y / L²|, 2 / L), which is sign(y) 2 / L as |y| <= L.
+    # Goal behind: sign(y) max(|2 y / D²|, 2 / D), which is sign(y) 2 / D as |y| <= D.
     larger = 2.0 / math.hypot(p_base[0], p_base[1])
     return larger if p_base[1] >= 0.0 else -larger

@@ -1,4 +1,5 @@
-"""Path tracker node: follows a ``nav_msgs/Path`` from the pose on ``odom``; publishes ``cmd_vel``.
+"""
+Path tracker node: follows a ``nav_msgs/Path`` from the pose on ``odom``; publishes ``cmd_vel``.
 
 The control law is chosen by ``law`` (book chapter 9; ``pure_pursuit``, §9.3.1, for now) and
 lives in :mod:`robotica_ctrl.mobile`. Topics: ``odom`` (nav_msgs/Odometry) and ``~/path``

@@ -1,4 +1,5 @@
-"""Conversions between ROS 2 messages and the NumPy values of the robotica cores.
+"""
+Conversions between ROS 2 messages and the NumPy values of the robotica cores.
 
 Planar poses are ``(x, y, theta)`` arrays [m, m, rad] in REP-103 (heading from the x axis,
 counter-clockwise); times are float seconds. Used by the nodes of every robotica package.
@@ -18,7 +19,8 @@ def stamp_to_seconds(stamp: Time) -> float:
 
 
 def seconds_to_stamp(t: float) -> Time:
-    """Return float seconds ``t`` >= 0 as a ``builtin_interfaces/Time`` (rounded to 1 ns).
+    """
+    Return float seconds ``t`` >= 0 as a ``builtin_interfaces/Time`` (rounded to 1 ns).
 
     >>> seconds_to_stamp(1.5)
     builtin_interfaces.msg.Time(sec=1, nanosec=500000000)
@@ -33,7 +35,8 @@ def yaw_to_quaternion(yaw: float) -> Quaternion:
 
 
 def quaternion_to_yaw(q: Quaternion) -> float:
-    """Return the rotation about z [rad] of quaternion ``q`` (roll and pitch ignored).
+    """
+    Return the rotation about z [rad] of quaternion ``q`` (roll and pitch ignored).
 
     >>> round(quaternion_to_yaw(yaw_to_quaternion(2.0)), 12)
     2.0
@@ -49,14 +52,21 @@ def pose2d_from_odometry(msg: Odometry) -> NDArray[np.float64]:
 
 def odometry_message(t: float, frame_id: str, child_frame_id: str, pose: ArrayLike,
                      twist: tuple[float, float]) -> Odometry:
-    """Build an ``Odometry``: pose ``(x, y, theta)`` in ``frame_id``, twist (v, w) in the child.
+    """
+    Build an ``Odometry``: pose ``(x, y, theta)`` in ``frame_id``, twist (v, w) in the child.
 
     Parameters
     ----------
-    t : stamp [s].
-    frame_id, child_frame_id : REP-105 frames, e.g. ``odom`` and ``base_link``.
-    pose : (3,) planar pose [m, m, rad].
-    twist : forward speed [m/s] and yaw rate [rad/s], in ``child_frame_id``.
+    t : float
+        Stamp [s].
+    frame_id : str
+        Frame of the pose (REP-105), e.g. ``odom``.
+    child_frame_id : str
+        Frame of the twist, e.g. ``base_link``.
+    pose : array_like, shape (3,)
+        Planar pose [m, m, rad].
+    twist : tuple of float
+        Forward speed [m/s] and yaw rate [rad/s], in ``child_frame_id``.
 
     """
     x, y, theta = (float(v) for v in np.asarray(pose, dtype=float))

@@ -1,6 +1,8 @@
-"""The ``main()`` of every robotica node: init, build, spin, shut down cleanly (Jazzy).
+"""
+The ``main()`` of every robotica node: init, build, spin, shut down cleanly (Jazzy).
 
-A node whose parameters are invalid raises ``ValueError`` while it is built; that is logged as
+A node whose parameters are invalid raises ``ValueError`` (or rclpy refuses an override out of
+its range or of the wrong type) while it is built; that is logged as
 one clear line and the process exits with code 2, without a traceback. Ctrl-C (SIGINT) and
 SIGTERM end the process with code 0 (STYLE.md §5, shutdown).
 """
@@ -8,6 +10,7 @@ import sys
 from typing import Callable, Optional
 
 import rclpy
+from rclpy.exceptions import ParameterException
 from rclpy.executors import Executor, ExternalShutdownException, SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.signals import SignalHandlerOptions
@@ -22,7 +25,8 @@ def run_node(factory: Callable[[], Node], args: Optional[list[str]] = None,
              run: Callable[[Node, Executor], int] = _spin_forever,
              executor_factory: Callable[[], Executor] = SingleThreadedExecutor,
              signal_handler_options: SignalHandlerOptions = SignalHandlerOptions.ALL) -> None:
-    """Build the node with ``factory``, run it with ``run(node, executor)`` and exit.
+    """
+    Build the node with ``factory``, run it with ``run(node, executor)`` and exit.
 
     ``run`` returns the exit code; the default spins until shutdown. A node that must act on
     SIGINT/SIGTERM itself (e.g. drain and close a file) passes ``SignalHandlerOptions.NO``.
@@ -35,7 +39,7 @@ def run_node(factory: Callable[[], Node], args: Optional[list[str]] = None,
         executor = executor_factory()
         executor.add_node(node)
         code = run(node, executor)
-    except ValueError as err:
+    except (ValueError, ParameterException) as err:
         name = getattr(factory, '__name__', 'node')
         rclpy.logging.get_logger(name).error(f'invalid configuration: {err}')
         code = 2

@@ -1,4 +1,5 @@
-"""Declaring ROS 2 parameters with descriptions, units and ranges in one call.
+"""
+Declaring ROS 2 parameters with descriptions, units and ranges in one call.
 
 Every robotica node declares its parameters through :func:`declare`, so that each has a
 ``ParameterDescriptor`` (description with unit and book symbol, range, read-only flag) and rclpy
@@ -13,7 +14,8 @@ from rclpy.node import Node
 def declare(node: Node, name: str, default: Any, description: str, *,
             low: Optional[float] = None, high: Optional[float] = None,
             read_only: bool = False) -> Any:
-    """Declare parameter ``name`` on ``node`` and return its value.
+    """
+    Declare parameter ``name`` on ``node`` and return its value.
 
     ``low``/``high`` give an inclusive range for a float or integer parameter (both or neither).
     """

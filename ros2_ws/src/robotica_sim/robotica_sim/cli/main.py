@@ -1,4 +1,5 @@
-"""Entry point of the ``robotica`` command (``robotica <verb> ...``).
+"""
+Entry point of the ``robotica`` command (``robotica <verb> ...``).
 
 Exit codes: 0 success, 1 the run or check failed, 2 usage error, 130 interrupted (Ctrl-C).
 """

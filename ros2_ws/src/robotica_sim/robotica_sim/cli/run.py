@@ -1,4 +1,5 @@
-"""Run a scenario: every node in its own process, the whole run recorded to a bag.
+"""
+Run a scenario: every node in its own process, the whole run recorded to a bag.
 
 Starts the recorder, the path publisher, the encoder emulator, the odometry, the path tracker
 and the simulator with the scenario's parameters; waits until the recorder has matched every
@@ -30,11 +31,11 @@ from std_srvs.srv import Trigger
 import yaml
 
 HELP = 'run a scenario and record it'
-EPILOG = '''examples:
+EPILOG = """examples:
   robotica run demo                        the shipped demo scenario, lockstep
   robotica run demo --pacing realtime      watch it at wall-clock speed
   robotica run my_scenario.yaml --json     machine-readable summary on stdout
-'''
+"""
 STOP_ORDER = ['simulator', 'path_tracker', 'odometry', 'encoder_emulator', 'path_publisher',
               'recorder']
 
@@ -114,8 +115,8 @@ def _call(executor, node, service: str, deadline: float) -> Trigger.Response:
             if time.monotonic() > deadline:
                 raise RunFailed(f'service {service} did not appear')
         future = client.call_async(Trigger.Request())
-        executor.spin_until_future_complete(future, timeout_sec=max(0.1, deadline -
-                                                                   time.monotonic()))
+        remaining = max(0.1, deadline - time.monotonic())
+        executor.spin_until_future_complete(future, timeout_sec=remaining)
         if not future.done():
             raise RunFailed(f'service {service} did not answer')
         return future.result()

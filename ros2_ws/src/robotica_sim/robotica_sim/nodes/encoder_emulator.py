@@ -1,4 +1,5 @@
-"""Encoder emulator node: wheel angles (``joint_states``) -> quantised ticks (``wheel_encoders``).
+"""
+Encoder emulator node: wheel angles (``joint_states``) -> quantised ticks (``wheel_encoders``).
 
 Each ``sensor_msgs/JointState`` from the simulator gives the cumulative angles of the two drive
 wheels; the node publishes one ``robotica_msgs/WheelEncoders`` with the same stamp, counts

@@ -1,4 +1,5 @@
-"""Odometry node: dead reckoning from wheel-encoder ticks -> ``odom`` (nav_msgs/Odometry).
+"""
+Odometry node: dead reckoning from wheel-encoder ticks -> ``odom`` (nav_msgs/Odometry).
 
 The maths is :class:`robotica_kin.mobile.odometry.DiffDriveOdometry` (the slides' update, book
 §4.7.5; exact arc (4.93) by default). The pose is in ``odom_frame_id``, the twist in

@@ -1,15 +1,16 @@
-"""Path publisher node: a reference path from parameters -> latched ``path`` (nav_msgs/Path).
+"""
+Path publisher node: a reference path from parameters -> latched ``path`` (nav_msgs/Path).
 
 The path is the polyline through ``x``/``y`` [m] in ``frame_id``; each pose faces the next point.
 Published once with a reliable, transient-local QoS, so a tracker that starts later still gets it.
 """
 from nav_msgs.msg import Path
 import numpy as np
+from rcl_interfaces.msg import ParameterDescriptor
 from rclpy.exceptions import ParameterUninitializedException
 from rclpy.node import Node
 from rclpy.parameter import Parameter
 from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
-from rcl_interfaces.msg import ParameterDescriptor
 from robotica_kin.nodes.convert import path_message
 from robotica_kin.nodes.entry_point import run_node
 from robotica_kin.nodes.parameters import declare

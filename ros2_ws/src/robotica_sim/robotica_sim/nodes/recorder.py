@@ -1,4 +1,5 @@
-"""Recorder node: every topic of a run, serialized, into a rosbag2 directory (MCAP).
+"""
+Recorder node: every topic of a run, serialized, into a rosbag2 directory (MCAP).
 
 Subscribes to the topics named in ``topics`` (or, when empty, to every topic it discovers)
 with ``raw=True``, so messages are written as received (CDR) by ``rosbags`` into
@@ -119,8 +120,7 @@ class RecorderNode(Node):
             self._count += 1
             self._last_message = time.monotonic()
 
-        self._recorded[topic] = self.create_subscription(msg_class, topic, write, qos,
-                                                              raw=True)
+        self._recorded[topic] = self.create_subscription(msg_class, topic, write, qos, raw=True)
         self.get_logger().info(f'recording {topic} [{msgtype}]')
 
     def _on_ready(self, request: Trigger.Request, response: Trigger.Response

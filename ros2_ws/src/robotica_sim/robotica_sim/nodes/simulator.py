@@ -1,4 +1,5 @@
-"""Simulator node: a differential-drive robot integrated at a fixed step; it owns the time.
+"""
+Simulator node: a differential-drive robot integrated at a fixed step; it owns the time.
 
 Subscribes ``cmd_vel`` (geometry_msgs/Twist). Publishes ``/clock``, the ground truth
 ``ground_truth/odom`` (nav_msgs/Odometry, pose in ``world_frame_id``, twist in ``base_frame_id``),

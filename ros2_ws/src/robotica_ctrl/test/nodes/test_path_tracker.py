@@ -1,0 +1,103 @@
+"""
+Node tests of path_tracker: commands from real messages, safe stops, refused gains.
+
+Reference: a robot at (0, 0.5) heading +x beside the straight path y = 0 is left of the path,
+so its cross-track error is +0.5 m and pure pursuit turns it right (negative yaw rate).
+"""
+import math
+
+from geometry_msgs.msg import PoseStamped, Twist
+from nav_msgs.msg import Odometry, Path
+import pytest
+from rcl_interfaces.msg import Parameter, ParameterType, ParameterValue
+from rcl_interfaces.srv import SetParameters
+from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
+from robotica_msgs.msg import TrackingError
+
+pytestmark = pytest.mark.ros
+QOS = QoSProfile(depth=10, reliability=ReliabilityPolicy.RELIABLE)
+LATCHED = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,
+                     durability=DurabilityPolicy.TRANSIENT_LOCAL)
+
+
+def _odom(x, y, theta, frame='odom'):
+    msg = Odometry()
+    msg.header.frame_id = frame
+    msg.pose.pose.position.x = x
+    msg.pose.pose.position.y = y
+    msg.pose.pose.orientation.z = math.sin(theta / 2)
+    msg.pose.pose.orientation.w = math.cos(theta / 2)
+    return msg
+
+
+def _straight_path():
+    path = Path()
+    path.header.frame_id = 'odom'
+    for i in range(101):
+        pose = PoseStamped()
+        pose.pose.position.x = 0.1 * i
+        path.poses.append(pose)
+    return path
+
+
+@pytest.fixture
+def tracker(start_node, ros_node, spin):
+    node, executor = ros_node
+    proc = start_node('robotica_ctrl', 'path_tracker', '-r', '/path_tracker/path:=/path')
+    cmds, errors = [], []
+    node.create_subscription(Twist, 'cmd_vel', cmds.append, QOS)
+    node.create_subscription(TrackingError, '/path_tracker/tracking_error', errors.append, QOS)
+    odom = node.create_publisher(Odometry, 'odom', QOS)
+    path = node.create_publisher(Path, '/path', LATCHED)
+    assert spin(executor, lambda: odom.get_subscription_count() > 0 and
+                path.get_subscription_count() > 0 and node.count_publishers('cmd_vel') > 0)
+    return proc, node, executor, odom, path, cmds, errors
+
+
+def test_no_path_means_stop(tracker, spin, read_output):
+    proc, node, executor, odom, path, cmds, errors = tracker
+    odom.publish(_odom(0.0, 0.5, 0.0))
+    assert spin(executor, lambda: cmds)
+    assert cmds[-1].linear.x == 0.0 and cmds[-1].angular.z == 0.0
+    assert 'no path' in read_output(proc)
+
+
+def test_turns_towards_the_path(tracker, spin):
+    proc, node, executor, odom, path, cmds, errors = tracker
+    path.publish(_straight_path())
+    spin(executor, lambda: False, timeout=0.3)
+    odom.publish(_odom(0.0, 0.5, 0.0))
+    assert spin(executor, lambda: errors)
+    assert errors[-1].cross_track == pytest.approx(0.5, abs=1e-9)
+    assert errors[-1].heading == pytest.approx(0.0, abs=1e-9)
+    assert cmds[-1].linear.x > 0.0
+    assert cmds[-1].angular.z < 0.0
+
+
+def test_nan_pose_and_wrong_frame_stop(tracker, spin, read_output):
+    proc, node, executor, odom, path, cmds, errors = tracker
+    path.publish(_straight_path())
+    spin(executor, lambda: False, timeout=0.3)
+    odom.publish(_odom(math.nan, 0.5, 0.0))
+    assert spin(executor, lambda: cmds)
+    assert (cmds[-1].linear.x, cmds[-1].angular.z) == (0.0, 0.0)
+    odom.publish(_odom(0.0, 0.5, 0.0, frame='map'))
+    assert spin(executor, lambda: len(cmds) >= 2)
+    assert (cmds[-1].linear.x, cmds[-1].angular.z) == (0.0, 0.0)
+    assert proc.poll() is None
+    text = read_output(proc)
+    assert 'pose refused' in text and "differs from path frame" in text
+
+
+def test_invalid_gain_is_refused_with_reason(tracker, spin):
+    proc, node, executor, odom, path, cmds, errors = tracker
+    client = node.create_client(SetParameters, '/path_tracker/set_parameters')
+    assert client.wait_for_service(timeout_sec=15.0)
+    value = ParameterValue(type=ParameterType.PARAMETER_DOUBLE, double_value=5.0)
+    request = SetParameters.Request(parameters=[
+        Parameter(name='pure_pursuit.min_approach_velocity', value=value)])
+    future = client.call_async(request)
+    assert spin(executor, future.done)
+    result = future.result().results[0]
+    assert not result.successful
+    assert 'min_approach_velocity' in result.reason

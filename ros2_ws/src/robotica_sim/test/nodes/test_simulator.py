@@ -1,0 +1,66 @@
+"""
+Node tests of the simulator: motion under a command, the stale-command brake, refused input.
+
+A 0.5 m/s forward command for the differential drive of the default parameters moves the robot
+along +x (REP-103); once no command arrives for cmd_timeout, the ground-truth twist is zero.
+"""
+import math
+
+from geometry_msgs.msg import Twist
+from nav_msgs.msg import Odometry
+import pytest
+from rclpy.qos import QoSProfile, ReliabilityPolicy
+from rosgraph_msgs.msg import Clock
+
+pytestmark = pytest.mark.ros
+QOS = QoSProfile(depth=10, reliability=ReliabilityPolicy.RELIABLE)
+CMD_QOS = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE)
+
+
+def test_drives_then_brakes_when_commands_stop(start_node, ros_node, spin, read_output):
+    node, executor = ros_node
+    proc = start_node('robotica_sim', 'simulator', '-p', 'cmd_timeout:=0.3')
+    truth, clock = [], []
+    node.create_subscription(Odometry, 'ground_truth/odom', truth.append, QOS)
+    node.create_subscription(Clock, '/clock', clock.append, QOS)
+    cmd = node.create_publisher(Twist, 'cmd_vel', CMD_QOS)
+    assert spin(executor, lambda: cmd.get_subscription_count() > 0 and truth)
+    forward = Twist()
+    forward.linear.x = 0.5
+    for _ in range(20):                          # 1 s of commands at 20 Hz (wall clock)
+        cmd.publish(forward)
+        spin(executor, lambda: False, timeout=0.05)
+    moving = truth[-1]
+    assert moving.twist.twist.linear.x == pytest.approx(0.5, abs=1e-9)
+    assert moving.pose.pose.position.x > 0.1
+    assert abs(moving.pose.pose.position.y) < 1e-9
+    n = len(truth)
+    assert spin(executor, lambda: len(truth) > n + 30)   # > 0.6 s later: stale
+    assert truth[-1].twist.twist.linear.x == 0.0
+    assert 'command stale' in read_output(proc)
+    stamps = [c.clock.sec + c.clock.nanosec * 1e-9 for c in clock]
+    assert all(b > a for a, b in zip(stamps, stamps[1:])), 'simulated time must increase'
+
+
+def test_nan_command_brakes(start_node, ros_node, spin, read_output):
+    node, executor = ros_node
+    proc = start_node('robotica_sim', 'simulator')
+    truth = []
+    node.create_subscription(Odometry, 'ground_truth/odom', truth.append, QOS)
+    cmd = node.create_publisher(Twist, 'cmd_vel', CMD_QOS)
+    assert spin(executor, lambda: cmd.get_subscription_count() > 0 and truth)
+    bad = Twist()
+    bad.linear.x = math.nan
+    for _ in range(10):
+        cmd.publish(bad)
+        spin(executor, lambda: False, timeout=0.05)
+    assert truth[-1].twist.twist.linear.x == 0.0
+    assert math.isfinite(truth[-1].pose.pose.position.x)
+    assert proc.poll() is None
+    assert 'refused command' in read_output(proc)
+
+
+def test_unknown_pacing_is_refused(start_node, read_output):
+    proc = start_node('robotica_sim', 'simulator', '-p', 'pacing:=fast')
+    assert proc.wait(timeout=30) == 2
+    assert 'pacing must be one of' in read_output(proc)

@@ -1,0 +1,202 @@
+"""Tests of robotica_sim.run_plan: the nodes, parameters and topics of a scenario's run."""
+import math
+from pathlib import Path
+import textwrap
+
+import pytest
+
+from robotica_sim.run_plan import (
+    path_points, plan_run, RECORDED_TOPICS, STATUS_TOPIC, TRACKING_ERROR_TOPIC)
+from robotica_sim.scenario import load_scenario, PathSpec, Scenario, ScenarioError
+
+DEMO = Path(__file__).resolve().parents[1] / 'scenarios' / 'demo.yaml'
+START_ORDER = ['path_publisher', 'encoder_emulator', 'odometry', 'path_tracker', 'simulator']
+
+
+def write(tmp_path, text, name='scenario.yaml'):
+    path = tmp_path / name
+    path.write_text(textwrap.dedent(text))
+    return path
+
+
+def by_name(nodes):
+    return {node.name: node for node in nodes}
+
+
+@pytest.fixture(scope='module')
+def demo():
+    return load_scenario(str(DEMO))
+
+
+@pytest.fixture(scope='module')
+def demo_plan(demo):
+    return plan_run(demo)
+
+
+def test_nodes_in_start_order(demo_plan):
+    assert [node.name for node in demo_plan] == START_ORDER
+    assert [(node.package, node.executable) for node in demo_plan] == [
+        ('robotica_sim', 'path_publisher'),
+        ('robotica_sim', 'encoder_emulator'),
+        ('robotica_sim', 'odometry'),
+        ('robotica_ctrl', 'path_tracker'),
+        ('robotica_sim', 'simulator'),
+    ]
+
+
+def test_demo_parameters(demo, demo_plan):
+    nodes = by_name(demo_plan)
+    simulator, odometry = nodes['simulator'].parameters, nodes['odometry'].parameters
+    assert simulator['robot.wheel_radius'] == odometry['wheel_radius'] == 0.1
+    assert simulator['robot.wheel_separation'] == odometry['wheel_separation'] == 0.4
+    for params in (simulator, odometry):
+        assert (params['initial_pose.x'], params['initial_pose.y'],
+                params['initial_pose.theta']) == (0.0, 0.0, 0.0)
+    assert simulator['end_time'] == demo.duration == 32.0
+    assert simulator['autostart'] is False
+    assert simulator['step_period'] == 0.02
+    assert simulator['pacing'] == 'lockstep'
+    assert odometry['integration_method'] == 'exact_arc'
+    assert odometry['odom_frame_id'] == 'odom'
+    assert nodes['path_publisher'].parameters['frame_id'] == 'odom'
+    assert nodes['encoder_emulator'].parameters == {'ticks_per_revolution': 4096}
+    tracker = nodes['path_tracker'].parameters
+    assert tracker == {'law': 'pure_pursuit',
+                       'pure_pursuit.lookahead_distance': 0.5,
+                       'pure_pursuit.desired_linear_velocity': 0.5,
+                       'pure_pursuit.max_angular_velocity': 1.5}
+    assert all(type(v) is float for k, v in tracker.items() if k != 'law')
+
+
+def test_parameter_values_are_plain_ros_types(demo_plan):
+    # rclpy parameters: bool, int, float, str or a homogeneous list of them (no numpy scalars).
+    for node in demo_plan:
+        for name, value in node.parameters.items():
+            assert type(value) in (bool, int, float, str, list), (node.name, name, value)
+            if isinstance(value, list):
+                assert value and all(type(v) is float for v in value), (node.name, name)
+
+
+def test_robot_and_initial_pose_reach_simulator_and_odometry(tmp_path):
+    path = write(tmp_path, """\
+        duration: 12.5
+        step_period: 0.05
+        pacing: realtime
+        robot:
+          wheel_radius: 0.05
+          wheel_separation: 0.3
+          initial_pose: [1.0, -2.0, 0.5]
+        odometry:
+          integration_method: midpoint
+        path:
+          shape: circle
+          frame_id: map
+          center: [1.0, 0.0]
+          radius: 1.0
+        sensors:
+          encoders:
+            ticks_per_revolution: 1000
+        tracker:
+          lookahead_distance: 1
+        """)
+    nodes = by_name(plan_run(load_scenario(str(path))))
+    simulator, odometry = nodes['simulator'].parameters, nodes['odometry'].parameters
+    for params, prefix in ((simulator, 'robot.'), (odometry, '')):
+        assert params[prefix + 'wheel_radius'] == 0.05
+        assert params[prefix + 'wheel_separation'] == 0.3
+        assert params['initial_pose.x'] == 1.0
+        assert params['initial_pose.y'] == -2.0
+        assert params['initial_pose.theta'] == 0.5
+    assert simulator['end_time'] == 12.5
+    assert simulator['step_period'] == 0.05
+    assert simulator['pacing'] == 'realtime'
+    assert simulator['autostart'] is False
+    assert odometry['integration_method'] == 'midpoint'
+    assert odometry['odom_frame_id'] == 'map'
+    assert nodes['path_publisher'].parameters['frame_id'] == 'map'
+    assert nodes['encoder_emulator'].parameters['ticks_per_revolution'] == 1000
+    gain = nodes['path_tracker'].parameters['pure_pursuit.lookahead_distance']
+    assert type(gain) is float and gain == 1.0   # an integer gain is passed as a float
+
+
+def test_demo_path_is_the_rounded_rectangle(demo_plan):
+    params = by_name(demo_plan)['path_publisher'].parameters
+    x, y = params['x'], params['y']
+    assert len(x) == len(y) > 2
+    assert (x[0], y[0]) == (0.0, 0.0)
+    assert (x[-1], y[-1]) == (0.0, 0.0)       # closed
+    steps = [math.hypot(x[i + 1] - x[i], y[i + 1] - y[i]) for i in range(len(x) - 1)]
+    assert max(steps) <= 0.05 * (1.0 + 1e-12)   # spacing
+    assert min(steps) > 0.0
+    # x in [-r, W - r], y in [0, H] (the shape starts at the beginning of the bottom straight).
+    assert min(x) == pytest.approx(-0.8, abs=1e-12) and max(x) == pytest.approx(3.2, abs=1e-12)
+    assert min(y) == pytest.approx(0.0, abs=1e-12) and max(y) == pytest.approx(3.0, abs=1e-12)
+    # Length 2 (W + H) - 8 r + 2 pi r (12.63 m), less the chord deficit of the four corners:
+    # a piece of angle a <= spacing / r has chord 2 r sin(a/2) >= r a (1 - a^2 / 24).
+    width, height, r, spacing = 4.0, 3.0, 0.8, 0.05
+    exact = 2.0 * (width + height) - 8.0 * r + 2.0 * math.pi * r
+    deficit = 2.0 * math.pi * r * (spacing / r) ** 2 / 24.0
+    length = math.fsum(steps)
+    assert exact == pytest.approx(12.63, abs=5e-3)
+    assert exact - deficit - 1e-9 <= length <= exact + 1e-9
+
+
+def test_path_points_of_a_straight_line():
+    scenario = Scenario(name='line', path=PathSpec(
+        shape='straight_line', args={'start': [0.0, 0.0], 'end': [3.0, 4.0], 'spacing': 1.0}))
+    points = path_points(scenario)
+    assert len(points) == 6   # 5 m in pieces of <= 1 m
+    for i, (x, y) in enumerate(points):
+        assert (x, y) == pytest.approx((0.6 * i, 0.8 * i), abs=1e-12)
+    assert all(type(c) is float for point in points for c in point)
+
+
+@pytest.mark.parametrize('path_yaml, expected', [
+    ('shape: spiral\n', 'path.shape'),
+    ('shape: __init__\n', 'path.shape'),
+    ('shape: circle\nradius: -1.0\ncenter: [0.0, 0.0]\n', 'radius'),
+    ('shape: circle\nradius: 1.0\n', 'circle'),                       # center missing
+    ('shape: rounded_rectangle\nwidth: 4.0\nheight: 3.0\ncorner_radius: 0.8\n'
+     'widht: 4.0\n', 'widht'),                                         # unknown argument
+    ('shape: rounded_rectangle\nwidth: "4"\nheight: 3.0\ncorner_radius: 0.8\n',
+     'rounded_rectangle'),                                             # wrong type
+    ('shape: rounded_rectangle\nwidth: 1.0\nheight: 3.0\ncorner_radius: 0.8\n',
+     'corner_radius'),                                                 # 2 r > width
+    ('shape: figure_eight\nradius: .nan\n', 'radius'),
+    ('shape: straight_line\nstart: [0.0, 0.0]\nend: [0.0, 0.0]\n', 'differ'),
+])
+def test_bad_path_is_a_scenario_error(tmp_path, path_yaml, expected):
+    text = 'path:\n' + textwrap.indent(path_yaml, '  ')
+    path = write(tmp_path, text)
+    scenario = load_scenario(str(path))
+    with pytest.raises(ScenarioError, match=expected) as info:
+        plan_run(scenario)
+    assert str(path) in str(info.value)
+
+
+def test_recorded_topics_cover_the_remappings(demo_plan):
+    targets = [target for node in demo_plan for target in node.remappings.values()]
+    assert targets, 'the plan remaps at least the tracker path'
+    for target in targets:
+        assert target.startswith('/')
+        assert target in RECORDED_TOPICS
+    assert len(set(RECORDED_TOPICS)) == len(RECORDED_TOPICS)
+
+
+def test_private_topics_match_the_node_names(demo_plan):
+    # The tracker publishes ~/tracking_error and the simulator ~/status: private names resolve
+    # under the node names of the plan.
+    nodes = by_name(demo_plan)
+    assert TRACKING_ERROR_TOPIC == f'/{nodes["path_tracker"].name}/tracking_error'
+    assert STATUS_TOPIC == f'/{nodes["simulator"].name}/status'
+    assert nodes['path_tracker'].remappings == {'/path_tracker/path': '/path'}
+    assert {TRACKING_ERROR_TOPIC, STATUS_TOPIC} <= set(RECORDED_TOPICS)
+
+
+@pytest.mark.xfail(strict=True,
+                   reason='plan_run turns a bool tracker gain into 1.0 (bool is an int), '
+                          'silently accepting a value of the wrong type')
+def test_bool_gain_is_refused(tmp_path):
+    path = write(tmp_path, 'tracker:\n  lookahead_distance: true\n')
+    with pytest.raises(ScenarioError):
+        plan_run(load_scenario(str(path)))
