@@ -86,7 +86,7 @@ def test_nan_pose_and_wrong_frame_stop(tracker, spin, read_output):
     assert (cmds[-1].linear.x, cmds[-1].angular.z) == (0.0, 0.0)
     assert proc.poll() is None
     text = read_output(proc)
-    assert 'pose refused' in text and "differs from path frame" in text
+    assert 'pose refused' in text and 'differs from path frame' in text
 
 
 def test_invalid_gain_is_refused_with_reason(tracker, spin):
