@@ -104,8 +104,9 @@ class DiffDriveSimulation:
 
         Raises ValueError for a non-finite command (the caller keeps the safe stop).
         """
-        if not (math.isfinite(v) and math.isfinite(w)):
-            raise ValueError(f'command must be finite, got v={v!r}, w={w!r}')
+        if not (math.isfinite(v) and math.isfinite(w) and math.isfinite(t)):
+            raise ValueError(f'command and its time must be finite, got v={v!r}, w={w!r}, '
+                             f't={t!r}')
         self._command = (float(v), float(w))
         self._command_time = float(t)
 

@@ -6,6 +6,7 @@ process each) and the list of topics the recorder must record. It is pure data; 
 processes is :mod:`robotica_sim.process_supervisor`'s job.
 """
 from dataclasses import dataclass, field
+import math
 
 from robotica_ctrl import path_shapes
 from robotica_sim.scenario import Scenario, ScenarioError
@@ -31,24 +32,30 @@ class NodeSpec:
 def path_points(scenario: Scenario) -> list[list[float]]:
     """Return the scenario's reference path as a list of [x, y] points [m]."""
     spec = scenario.path
+    where = scenario.source or scenario.name
     if spec.shape not in PATH_SHAPES:
-        raise ScenarioError(f'{scenario.source}: path.shape must be one of {PATH_SHAPES}, '
+        raise ScenarioError(f'{where}: path.shape must be one of {PATH_SHAPES}, '
                             f'got {spec.shape!r}')
     try:
         points = getattr(path_shapes, spec.shape)(**spec.args)
     except (TypeError, ValueError) as err:
-        raise ScenarioError(f'{scenario.source}: path ({spec.shape}): {err}') from None
-    return [[float(x), float(y)] for x, y in points]
+        raise ScenarioError(f'{where}: path ({spec.shape}): {err}') from None
+    return [[round(float(x), 9), round(float(y), 9)] for x, y in points]   # [m], to 1 nm
 
 
 def plan_run(scenario: Scenario) -> list[NodeSpec]:
     """Return the nodes of a run, in start order (the recorder is added by the caller)."""
+    where = scenario.source or scenario.name
     robot = scenario.robot
     x0, y0, theta0 = robot.initial_pose
     pose = {'initial_pose.x': x0, 'initial_pose.y': y0, 'initial_pose.theta': theta0}
     points = path_points(scenario)
-    gains = {f'{scenario.tracker.law}.{k}': (float(v) if isinstance(v, int) else v)
-             for k, v in scenario.tracker.gains.items()}
+    gains = {}
+    for key, value in scenario.tracker.gains.items():
+        if isinstance(value, bool) or not isinstance(value, (int, float)) \
+                or not math.isfinite(value):
+            raise ScenarioError(f'{where}: tracker.{key} must be a finite number, got {value!r}')
+        gains[f'{scenario.tracker.law}.{key}'] = float(value)
     return [
         NodeSpec('robotica_sim', 'path_publisher', 'path_publisher', {
             'x': [p[0] for p in points], 'y': [p[1] for p in points],

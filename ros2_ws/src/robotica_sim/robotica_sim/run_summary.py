@@ -9,7 +9,7 @@ positive to the left).
 from dataclasses import asdict, dataclass
 import math
 from pathlib import Path
-from typing import Optional
+from typing import Any, Optional
 
 import numpy as np
 from robotica_ctrl.mobile.path import PolylinePath
@@ -47,7 +47,7 @@ def summarize_bag(bag: Path) -> RunSummary:
     """Read a run's bag and compute its summary. Raises ValueError when it is not a bag."""
     path_points = None
     truth = []
-    status = None
+    status: Any = None
     clock = 0.0
     count = 0
     try:
@@ -59,7 +59,7 @@ def summarize_bag(bag: Path) -> RunSummary:
         connections = [c for c in reader.connections if c.topic in wanted]
         count = sum(c.msgcount for c in reader.connections)
         for connection, _, raw in reader.messages(connections=connections):
-            msg = reader.deserialize(raw, connection.msgtype)
+            msg: Any = reader.deserialize(raw, connection.msgtype)
             if connection.topic == '/path':
                 path_points = np.array([[p.pose.position.x, p.pose.position.y]
                                         for p in msg.poses])

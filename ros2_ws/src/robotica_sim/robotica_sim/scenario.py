@@ -13,6 +13,7 @@ import typing
 from typing import Any, Optional
 
 from ament_index_python.packages import get_package_share_directory, PackageNotFoundError
+from robotica_kin.mobile.odometry import ODOMETRY_METHODS
 import yaml
 
 
@@ -99,6 +100,8 @@ class Scenario:
              'robot.initial_pose must be 3 finite numbers [x, y, theta]'),
             (self.sensors.encoders.ticks_per_revolution >= 1,
              'sensors.encoders.ticks_per_revolution must be >= 1'),
+            (self.odometry.integration_method in ODOMETRY_METHODS,
+             f'odometry.integration_method must be one of {ODOMETRY_METHODS}'),
         ]
         for ok, message in checks:
             if not ok:
@@ -139,9 +142,9 @@ def _convert(value: Any, kind: Any, where: str) -> Any:
 def _build(cls: Any, data: dict, where: str) -> Any:
     hints = typing.get_type_hints(cls)
     known = {f.name for f in fields(cls)}
-    unknown = sorted(set(data) - known)
+    unknown = sorted(map(str, set(data) - known))
     if unknown:
-        raise ScenarioError(f'{where}: unknown key(s) {", ".join(map(str, unknown))}; '
+        raise ScenarioError(f'{where}: unknown key(s) {", ".join(unknown)}; '
                             f'known: {", ".join(sorted(known))}')
     return cls(**{k: _convert(v, hints[k], f'{where}.{k}') for k, v in data.items()})
 

@@ -193,10 +193,11 @@ def test_private_topics_match_the_node_names(demo_plan):
     assert {TRACKING_ERROR_TOPIC, STATUS_TOPIC} <= set(RECORDED_TOPICS)
 
 
-@pytest.mark.xfail(strict=True,
-                   reason='plan_run turns a bool tracker gain into 1.0 (bool is an int), '
-                          'silently accepting a value of the wrong type')
 def test_bool_gain_is_refused(tmp_path):
-    path = write(tmp_path, 'tracker:\n  lookahead_distance: true\n')
-    with pytest.raises(ScenarioError):
+    path = write(tmp_path, """\
+        path: {shape: circle, center: [0.0, 0.0], radius: 1.0}
+        tracker:
+          lookahead_distance: true
+        """)
+    with pytest.raises(ScenarioError, match='lookahead_distance'):
         plan_run(load_scenario(str(path)))

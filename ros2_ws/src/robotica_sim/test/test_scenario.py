@@ -186,9 +186,6 @@ def test_a_path_is_taken_before_a_shipped_name(tmp_path):
     assert resolve_scenario_path(str(path)) == path
 
 
-@pytest.mark.xfail(strict=True, raises=TypeError,
-                   reason='scenario._build sorts unknown keys of mixed types (int and str): '
-                          'TypeError instead of ScenarioError')
 def test_unknown_keys_of_mixed_types(tmp_path):
     path = write(tmp_path, 'robot:\n  1: a\n  colour: red\n')
     with pytest.raises(ScenarioError, match='robot'):
