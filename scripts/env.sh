@@ -25,9 +25,9 @@ export ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST
 export FASTRTPS_DEFAULT_PROFILES_FILE=$ROBOTICA_ROOT/config/fastdds_localhost.xml
 export ROS_DOMAIN_ID=${ROS_DOMAIN_ID:-$((RANDOM % 100 + 1))}
 export ROS_LOG_DIR=${ROS_LOG_DIR:-$ROBOTICA_ROOT/ros2_ws/log/ros}
-_robotica_nounset=$([[ $- == *u* ]] && echo 1)
+case $- in *u*) _robotica_nounset=1 ;; *) _robotica_nounset= ;; esac
 set +u   # colcon's setup.bash reads unset variables
 # shellcheck disable=SC1091
 . "$ROBOTICA_ROOT/ros2_ws/install/setup.bash"
-[ -n "$_robotica_nounset" ] && set -u
+if [ -n "$_robotica_nounset" ]; then set -u; fi
 unset _robotica_nounset

@@ -19,19 +19,15 @@ from geometry_msgs.msg import Point, Twist
 from nav_msgs.msg import Odometry, Path
 from rcl_interfaces.msg import SetParametersResult
 from rclpy.node import Node
-from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
 from robotica_ctrl.mobile.path import PolylinePath
 from robotica_ctrl.mobile.pure_pursuit import PurePursuit, PurePursuitParams
 from robotica_kin.nodes.convert import path_points, pose2d_from_odometry, stamp_to_seconds
 from robotica_kin.nodes.entry_point import run_node
 from robotica_kin.nodes.parameters import declare
+from robotica_kin.nodes.qos import COMMAND_QOS, LATCHED_QOS, STREAM_PUB_QOS, STREAM_SUB_QOS
 from robotica_msgs.msg import TrackingError
 
 LAWS = ('pure_pursuit',)
-COMMAND_QOS = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE)
-STREAM_QOS = QoSProfile(depth=10, reliability=ReliabilityPolicy.RELIABLE)
-LATCHED_QOS = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,
-                         durability=DurabilityPolicy.TRANSIENT_LOCAL)
 GAIN_DESCRIPTIONS = {
     'lookahead_distance': ('Look-ahead arc distance L [m], book (9.7)', 0.01, 100.0),
     'desired_linear_velocity': ('Cruise speed [m/s]', 1e-3, 100.0),
@@ -75,9 +71,10 @@ class PathTrackerNode(Node):
         self._pose_msg = None
         self._reported = set()
         self._cmd_pub = self.create_publisher(Twist, 'cmd_vel', COMMAND_QOS)
-        self._error_pub = self.create_publisher(TrackingError, '~/tracking_error', STREAM_QOS)
+        self._error_pub = self.create_publisher(TrackingError, '~/tracking_error',
+                                                STREAM_PUB_QOS)
         self.create_subscription(Path, '~/path', self._on_path, LATCHED_QOS)
-        self.create_subscription(Odometry, 'odom', self._on_odom, STREAM_QOS)
+        self.create_subscription(Odometry, 'odom', self._on_odom, STREAM_SUB_QOS)
         if self._control_rate > 0.0:
             self.create_timer(1.0 / self._control_rate, self._on_timer)
 

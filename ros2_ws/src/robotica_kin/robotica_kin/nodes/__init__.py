@@ -1,3 +1,3 @@
 """ROS 2 shells of robotica_kin and the message conversions shared by every robotica node."""
 
-__all__ = ['convert', 'parameters']
+__all__ = ['convert', 'entry_point', 'parameters', 'qos']

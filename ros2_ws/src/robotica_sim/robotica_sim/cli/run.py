@@ -36,6 +36,7 @@ EPILOG = """examples:
   robotica run demo --pacing realtime      watch it at wall-clock speed
   robotica run my_scenario.yaml --json     machine-readable summary on stdout
 """
+MATCH_SETTLE = 0.5   # [s] wall clock, see _wait_ready
 STOP_ORDER = ['simulator', 'path_tracker', 'odometry', 'encoder_emulator', 'path_publisher',
               'recorder']
 
@@ -138,6 +139,12 @@ def _wait_ready(args, executor, node, supervisor, names) -> None:
         _check_alive(supervisor, names)
         answer = _call(executor, node, '/recorder/ready', deadline)
         if answer.success:
+            # The recorder sees its own side of each match; a publisher may match it a moment
+            # later. Streams keep a history for that (robotica_kin.nodes.qos), commands do not:
+            # give the publishers' side of discovery this long to complete.
+            settle = time.monotonic() + MATCH_SETTLE
+            while time.monotonic() < settle:
+                executor.spin_once(timeout_sec=settle - time.monotonic())
             return
         if time.monotonic() > deadline:
             raise RunFailed(f'discovery incomplete after {args.discovery_timeout} s: '

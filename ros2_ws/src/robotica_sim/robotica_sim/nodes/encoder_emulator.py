@@ -8,15 +8,12 @@ quantised by :func:`robotica_sim.encoder_model.quantize_ticks`.
 import math
 
 from rclpy.node import Node
-from rclpy.qos import QoSProfile, ReliabilityPolicy
 from robotica_kin.nodes.entry_point import run_node
 from robotica_kin.nodes.parameters import declare
+from robotica_kin.nodes.qos import STREAM_PUB_QOS, STREAM_SUB_QOS
 from robotica_msgs.msg import WheelEncoders
 from robotica_sim.encoder_model import quantize_ticks
 from sensor_msgs.msg import JointState
-
-# Reliable on both ends: in lockstep runs a lost reading would stall a step (DESIGN.md).
-STREAM_QOS = QoSProfile(depth=10, reliability=ReliabilityPolicy.RELIABLE)
 
 
 class EncoderEmulatorNode(Node):
@@ -35,8 +32,9 @@ class EncoderEmulatorNode(Node):
                     read_only=True))
         self._frame = declare(self, 'frame_id', 'base_link', 'frame_id of the readings',
                               read_only=True)
-        self._pub = self.create_publisher(WheelEncoders, 'wheel_encoders', STREAM_QOS)
-        self.create_subscription(JointState, 'joint_states', self._on_joint_states, STREAM_QOS)
+        self._pub = self.create_publisher(WheelEncoders, 'wheel_encoders', STREAM_PUB_QOS)
+        self.create_subscription(JointState, 'joint_states', self._on_joint_states,
+                                 STREAM_SUB_QOS)
 
     def _on_joint_states(self, msg: JointState) -> None:
         try:

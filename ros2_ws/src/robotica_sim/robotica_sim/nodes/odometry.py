@@ -9,15 +9,13 @@ import math
 
 from nav_msgs.msg import Odometry
 from rclpy.node import Node
-from rclpy.qos import QoSProfile, ReliabilityPolicy
 from robotica_kin.mobile.differential_drive import DifferentialDriveParams
 from robotica_kin.mobile.odometry import DiffDriveOdometry, ODOMETRY_METHODS
 from robotica_kin.nodes.convert import odometry_message, stamp_to_seconds
 from robotica_kin.nodes.entry_point import run_node
 from robotica_kin.nodes.parameters import declare
+from robotica_kin.nodes.qos import STREAM_PUB_QOS, STREAM_SUB_QOS
 from robotica_msgs.msg import WheelEncoders
-
-STREAM_QOS = QoSProfile(depth=10, reliability=ReliabilityPolicy.RELIABLE)
 
 
 class OdometryNode(Node):
@@ -48,8 +46,8 @@ class OdometryNode(Node):
                                    read_only=True)
         self._odometry = None
         self._ticks_per_rev = 0
-        self._pub = self.create_publisher(Odometry, 'odom', STREAM_QOS)
-        self.create_subscription(WheelEncoders, 'wheel_encoders', self._on_ticks, STREAM_QOS)
+        self._pub = self.create_publisher(Odometry, 'odom', STREAM_PUB_QOS)
+        self.create_subscription(WheelEncoders, 'wheel_encoders', self._on_ticks, STREAM_SUB_QOS)
 
     def _on_ticks(self, msg: WheelEncoders) -> None:
         if msg.ticks_per_revolution < 1:

@@ -10,13 +10,10 @@ from rcl_interfaces.msg import ParameterDescriptor
 from rclpy.exceptions import ParameterUninitializedException
 from rclpy.node import Node
 from rclpy.parameter import Parameter
-from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
 from robotica_kin.nodes.convert import path_message
 from robotica_kin.nodes.entry_point import run_node
 from robotica_kin.nodes.parameters import declare
-
-LATCHED_QOS = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,
-                         durability=DurabilityPolicy.TRANSIENT_LOCAL)
+from robotica_kin.nodes.qos import LATCHED_QOS
 
 
 class PathPublisherNode(Node):

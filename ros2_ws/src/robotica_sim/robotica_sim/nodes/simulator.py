@@ -25,11 +25,11 @@ from nav_msgs.msg import Odometry
 from rclpy.duration import Duration
 from rclpy.executors import Executor
 from rclpy.node import Node
-from rclpy.qos import QoSProfile, ReliabilityPolicy
 from robotica_kin.mobile.differential_drive import DifferentialDriveParams
 from robotica_kin.nodes.convert import odometry_message, seconds_to_stamp
 from robotica_kin.nodes.entry_point import run_node
 from robotica_kin.nodes.parameters import declare
+from robotica_kin.nodes.qos import COMMAND_QOS, STREAM_PUB_QOS
 from robotica_msgs.msg import SimulatorStatus
 from robotica_sim.diff_drive_simulation import DiffDriveSimulation, SimulationParams
 from rosgraph_msgs.msg import Clock
@@ -37,8 +37,6 @@ from sensor_msgs.msg import JointState
 from std_srvs.srv import Trigger
 
 PACING_MODES = ('realtime', 'lockstep')
-COMMAND_QOS = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE)
-STREAM_QOS = QoSProfile(depth=10, reliability=ReliabilityPolicy.RELIABLE)
 
 
 class SimulatorNode(Node):
@@ -99,10 +97,10 @@ class SimulatorNode(Node):
                     read_only=True)]
         self._sim = DiffDriveSimulation(robot, params, pose)
 
-        self._clock_pub = self.create_publisher(Clock, '/clock', STREAM_QOS)
-        self._truth_pub = self.create_publisher(Odometry, 'ground_truth/odom', STREAM_QOS)
-        self._joints_pub = self.create_publisher(JointState, 'joint_states', STREAM_QOS)
-        self._status_pub = self.create_publisher(SimulatorStatus, '~/status', STREAM_QOS)
+        self._clock_pub = self.create_publisher(Clock, '/clock', STREAM_PUB_QOS)
+        self._truth_pub = self.create_publisher(Odometry, 'ground_truth/odom', STREAM_PUB_QOS)
+        self._joints_pub = self.create_publisher(JointState, 'joint_states', STREAM_PUB_QOS)
+        self._status_pub = self.create_publisher(SimulatorStatus, '~/status', STREAM_PUB_QOS)
         self.create_subscription(Twist, 'cmd_vel', self._on_cmd_vel, COMMAND_QOS)
         self.create_service(Trigger, '~/start', self._on_start)
         self._started = False

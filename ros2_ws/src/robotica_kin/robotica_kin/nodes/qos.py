@@ -1,0 +1,23 @@
+"""
+QoS profiles by role, shared by every robotica node (STYLE.md §5, "QoS by role").
+
+* Streams (clock, ground truth, wheel angles, encoder ticks, odometry, tracking errors, status)
+  are published RELIABLE and TRANSIENT_LOCAL with a history of ``STREAM_HISTORY`` messages: a
+  reliable publisher also serves best-effort (sensor-data) subscribers, and the history lets a
+  recorder whose subscription is matched a moment late still get the first messages of a run.
+  Stream subscribers ask for RELIABLE, VOLATILE: in lockstep a lost message would stall a step,
+  and a volatile reader gets no stale history.
+* Commands are RELIABLE, VOLATILE, keep-last 1: only the newest matters, and a late-joining
+  consumer must never receive an old command.
+* Latched data (paths, models) are RELIABLE, TRANSIENT_LOCAL, keep-last 1 on both ends.
+"""
+from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
+
+STREAM_HISTORY = 500   # messages: 10 s at 50 Hz, several seconds of a lockstep run
+
+STREAM_PUB_QOS = QoSProfile(depth=STREAM_HISTORY, reliability=ReliabilityPolicy.RELIABLE,
+                            durability=DurabilityPolicy.TRANSIENT_LOCAL)
+STREAM_SUB_QOS = QoSProfile(depth=10, reliability=ReliabilityPolicy.RELIABLE)
+COMMAND_QOS = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE)
+LATCHED_QOS = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,
+                         durability=DurabilityPolicy.TRANSIENT_LOCAL)
