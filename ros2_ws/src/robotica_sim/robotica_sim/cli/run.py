@@ -108,21 +108,17 @@ def _prepare(args: argparse.Namespace, scenario, run_dir: Path) -> list[NodeSpec
     return nodes
 
 
-def _call(executor, node, service: str, deadline: float) -> Trigger.Response:
-    client = node.create_client(Trigger, service)
-    try:
-        while not client.wait_for_service(timeout_sec=0.1):
-            executor.spin_once(timeout_sec=0.0)
-            if time.monotonic() > deadline:
-                raise RunFailed(f'service {service} did not appear')
-        future = client.call_async(Trigger.Request())
-        remaining = max(0.1, deadline - time.monotonic())
-        executor.spin_until_future_complete(future, timeout_sec=remaining)
-        if not future.done():
-            raise RunFailed(f'service {service} did not answer')
-        return future.result()
-    finally:
-        node.destroy_client(client)
+def _call(executor, client, deadline: float) -> Trigger.Response:
+    while not client.wait_for_service(timeout_sec=0.1):
+        executor.spin_once(timeout_sec=0.0)
+        if time.monotonic() > deadline:
+            raise RunFailed(f'service {client.srv_name} did not appear')
+    future = client.call_async(Trigger.Request())
+    remaining = max(0.1, deadline - time.monotonic())
+    executor.spin_until_future_complete(future, timeout_sec=remaining)
+    if not future.done():
+        raise RunFailed(f'service {client.srv_name} did not answer')
+    return future.result()
 
 
 def _check_alive(supervisor: ProcessSupervisor, names: list[str]) -> None:
@@ -135,9 +131,10 @@ def _check_alive(supervisor: ProcessSupervisor, names: list[str]) -> None:
 
 def _wait_ready(args, executor, node, supervisor, names) -> None:
     deadline = time.monotonic() + args.discovery_timeout
+    ready = node.create_client(Trigger, '/recorder/ready')
     while True:
         _check_alive(supervisor, names)
-        answer = _call(executor, node, '/recorder/ready', deadline)
+        answer = _call(executor, ready, deadline)
         if answer.success:
             # The recorder sees its own side of each match; a publisher may match it a moment
             # later. Streams keep a history for that (robotica_kin.nodes.qos), commands do not:
@@ -178,7 +175,8 @@ def _simulate(args, scenario, run_dir: Path, supervisor: ProcessSupervisor) -> f
         QoSProfile(depth=1, reliability=ReliabilityPolicy.BEST_EFFORT))
     try:
         _wait_ready(args, executor, node, supervisor, names)
-        _call(executor, node, '/simulator/start', time.monotonic() + args.discovery_timeout)
+        _call(executor, node.create_client(Trigger, '/simulator/start'),
+              time.monotonic() + args.discovery_timeout)
         _log(args, f'running {scenario.name}: {scenario.duration} s simulated, '
                    f'{scenario.pacing} pacing')
         start = time.monotonic()

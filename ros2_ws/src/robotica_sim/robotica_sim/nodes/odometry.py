@@ -5,8 +5,6 @@ The maths is :class:`robotica_kin.mobile.odometry.DiffDriveOdometry` (the slides
 §4.7.5; exact arc (4.93) by default). The pose is in ``odom_frame_id``, the twist in
 ``base_frame_id`` (REP-105); the odometry starts at ``initial_pose``.
 """
-import math
-
 from nav_msgs.msg import Odometry
 from rclpy.node import Node
 from robotica_kin.mobile.differential_drive import DifferentialDriveParams
@@ -63,8 +61,6 @@ class OdometryNode(Node):
             pose = self._odometry.update(msg.left_ticks, msg.right_ticks, t)
         except ValueError as err:
             self.get_logger().warn(f'reading refused: {err}', throttle_duration_sec=5.0)
-            return
-        if not all(math.isfinite(v) for v in pose):
             return
         out = odometry_message(t, self._odom_frame, self._base_frame, pose,
                                self._odometry.twist)

@@ -95,6 +95,7 @@ class SimulatorNode(Node):
                     read_only=True),
             declare(self, 'right_wheel_joint', 'right_wheel_joint', 'Right wheel joint name',
                     read_only=True)]
+        self._step_period = params.step_period
         self._sim = DiffDriveSimulation(robot, params, pose)
 
         self._clock_pub = self.create_publisher(Clock, '/clock', STREAM_PUB_QOS)
@@ -178,7 +179,7 @@ class SimulatorNode(Node):
     def run(self, executor: Executor) -> int:
         """Step until ``end_time`` (or shutdown); return the process exit code."""
         self._spin_until(executor, lambda: self._started or self._autostart, math.inf)
-        self.get_logger().info(f'started: pacing {self._pacing}, step {self._sim_period()} s, '
+        self.get_logger().info(f'started: pacing {self._pacing}, step {self._step_period} s, '
                                f'end time {self._end_time or "none"} s')
         self._wall_start = time.monotonic()
         lockstep = self._pacing == 'lockstep'
@@ -194,7 +195,7 @@ class SimulatorNode(Node):
             if lockstep:
                 seen = self._answers
             else:
-                target = self._wall_start + (self._sim.step_count + 1) * self._sim_period()
+                target = self._wall_start + (self._sim.step_count + 1) * self._step_period
                 self._spin_until(executor, lambda: False, target)
             self._step_once()
             self._publish_state()
@@ -215,9 +216,6 @@ class SimulatorNode(Node):
             f'{wall:.2f} s wall (real-time factor {self._sim.t / max(wall, 1e-9):.1f}); '
             f'lockstep timeouts {self._timeouts}, stale-command steps {self._stale_steps}')
         return 0
-
-    def _sim_period(self) -> float:
-        return self.get_parameter('step_period').value
 
     def _step_once(self) -> None:
         stale = self._sim.command_is_stale()
