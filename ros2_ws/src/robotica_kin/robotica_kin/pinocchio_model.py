@@ -1,0 +1,102 @@
+"""
+Pinocchio models built from Craig's modified DH tables (book §4.3, HEMERO ``dh`` and ``dyn``).
+
+Joint i of the Pinocchio model is placed in its parent (joint i-1, or the universe for i = 1)
+at ``Rot(X, alpha_{i-1}) Tras(X, a_{i-1})`` followed by the table's constant part of the joint:
+``Tras(Z, d_i)`` for a revolute joint (a ``JointModelRZ`` then turns it by q_i) or
+``Rot(Z, theta_i)`` for a prismatic one (a ``JointModelPZ`` then slides it by q_i). The frame of
+joint i is therefore Craig's link frame {i}, and the product of placements and joint motions is
+exactly the chain of link transforms (4.6). Operational frames ``link_0`` … ``link_n`` name
+those frames, and ``tool0`` is the robot's tool frame on link n (``DHModel.tool``, the identity
+unless given), the frame of ``fkine`` and of the Jacobians.
+"""
+
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike
+import pinocchio as pin
+
+from robotica_kin.dh import as_dh_model, DHModel
+
+__all__ = ['build_model']
+
+
+def _link_inertia(row: np.ndarray) -> Any:
+    """Return the Pinocchio inertia of one ``dyn`` row: mass, CoM and inertia about the CoM."""
+    mass = row[5]
+    com = row[6:9]
+    ixx, iyy, izz, ixy, iyz, ixz = row[9:15]
+    inertia = np.array([[ixx, ixy, ixz], [ixy, iyy, iyz], [ixz, iyz, izz]])
+    return pin.Inertia(mass, com, inertia)
+
+
+def build_model(dh: DHModel | ArrayLike, dyn: ArrayLike | None = None) -> Any:
+    """
+    Return a Pinocchio ``Model`` of a manipulator given by a modified-DH table.
+
+    Parameters
+    ----------
+    dh : DHModel or array_like, shape (n, 4) or (n, 5)
+        The robot (book Table 4.2 rows ``[alpha a theta d sigma]``).
+    dyn : array_like, shape (n, 20), optional
+        HEMERO's dynamic table (book §A.3): columns 6-15 give the link mass [kg], its centre of
+        mass in the link frame [m] and its inertia tensor about the centre of mass
+        ``Ixx Iyy Izz Ixy Iyz Ixz`` [kg m²]; column 16 the motor inertia J_m [kg m²] and 17 the
+        gear ratio G, whose reflected inertia ``J_m G²`` becomes the joint's ``armature``.
+        Without it the links are massless.
+
+    Returns
+    -------
+    pinocchio.Model
+        One revolute (RZ) or prismatic (PZ) joint per row, named as the robot's joints, with
+        the joint limits, and frames ``link_0`` … ``link_n`` and ``tool0``.
+
+    Raises
+    ------
+    ValueError
+        For an invalid table (see :func:`robotica_kin.dh.dh_model`).
+
+    Examples
+    --------
+    >>> model = build_model([[0, 0, 0, 0], [0, 1.0, 0, 0]])
+    >>> model.nq, [model.names[i] for i in range(1, model.njoints)]
+    (2, ['joint_1', 'joint_2'])
+
+    """
+    robot = as_dh_model(dh)
+    if dyn is not None:
+        from robotica_kin.dh import dh_model
+        robot = dh_model(robot.table, name=robot.name, qlim=robot.qlim,
+                         joint_names=robot.joint_names, dyn=dyn, tool=robot.tool)
+    model = pin.Model()
+    model.name = robot.name
+    model.addFrame(pin.Frame('link_0', 0, 0, pin.SE3.Identity(), pin.FrameType.OP_FRAME))
+    parent = 0
+    for i in range(robot.n):
+        ca, sa = np.cos(robot.alpha[i]), np.sin(robot.alpha[i])
+        rot_x = np.array([[1.0, 0.0, 0.0], [0.0, ca, -sa], [0.0, sa, ca]])
+        if robot.prismatic[i]:
+            ct, st = np.cos(robot.theta[i]), np.sin(robot.theta[i])
+            rot = rot_x @ np.array([[ct, -st, 0.0], [st, ct, 0.0], [0.0, 0.0, 1.0]])
+            placement = pin.SE3(rot, np.array([robot.a[i], 0.0, 0.0]))
+            joint = pin.JointModelPZ()
+        else:
+            offset = np.array([robot.a[i], -sa * robot.d[i], ca * robot.d[i]])
+            placement = pin.SE3(rot_x, offset)
+            joint = pin.JointModelRZ()
+        parent = model.addJoint(
+            parent, joint, placement, robot.joint_names[i],
+            np.array([np.inf]), np.array([np.inf]),
+            robot.qlim[i:i + 1, 0].copy(), robot.qlim[i:i + 1, 1].copy())
+        if robot.dyn is not None:
+            model.appendBodyToJoint(parent, _link_inertia(robot.dyn[i]), pin.SE3.Identity())
+            motor_inertia, gear_ratio = robot.dyn[i, 15], robot.dyn[i, 16]
+            model.armature[i] = motor_inertia * gear_ratio ** 2
+            model.rotorInertia[i] = motor_inertia
+            model.rotorGearRatio[i] = gear_ratio
+        model.addFrame(pin.Frame(f'link_{i + 1}', parent, model.getFrameId(f'link_{i}'),
+                                 pin.SE3.Identity(), pin.FrameType.OP_FRAME))
+    model.addFrame(pin.Frame('tool0', parent, model.getFrameId(f'link_{robot.n}'),
+                             pin.SE3(np.array(robot.tool)), pin.FrameType.OP_FRAME))
+    return model

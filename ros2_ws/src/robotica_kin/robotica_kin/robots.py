@@ -1,0 +1,168 @@
+"""
+The book's manipulators as ready-made :class:`~robotica_kin.dh.DHModel` objects.
+
+- :func:`puma560`: HEMERO's ``dhp560`` table with Armstrong, Khatib and Burdick's (1986)
+  dynamic parameters ``dyn`` (book §A.2-§A.3, fig. A.7).
+- :func:`planar_rr`, :func:`planar_rrr`: the planar arms of Ej. 4.1 (frame {n} at the end of the
+  last link in the RR; at the last joint in the 3R, as the book's table puts it).
+- :func:`cylindrical_rpr`: the R-P-R robot of Ej. 4.2 (Table 4.3).
+
+:func:`robot_by_name` looks them up by the names the nodes and services use.
+"""
+
+import math
+
+import numpy as np
+
+from robotica_kin.dh import dh_model, DHModel
+
+__all__ = ['ROBOT_NAMES', 'cylindrical_rpr', 'planar_rr', 'planar_rrr', 'puma560', 'robot_by_name']
+
+_DEG = math.pi / 180.0
+
+# HEMERO dhp560 (book §A.2): [alpha_{i-1} a_{i-1} theta_i d_i sigma_i], metres and radians.
+_PUMA560_DH = [
+    [0.0, 0.0, 0.0, 0.0, 0.0],
+    [-math.pi / 2, 0.0, 0.0, 0.2435, 0.0],
+    [0.0, 0.4318, 0.0, -0.0934, 0.0],
+    [math.pi / 2, -0.0203, 0.0, 0.4331, 0.0],
+    [-math.pi / 2, 0.0, 0.0, 0.0, 0.0],
+    [math.pi / 2, 0.0, 0.0, 0.0, 0.0],
+]
+
+# Book fig. A.7 (Armstrong, Khatib & Burdick 1986), after the five DH columns:
+# m [kg], r_x r_y r_z [m], Ixx Iyy Izz Ixy Iyz Ixz [kg m^2], J_m [kg m^2], G, B, Tc+, Tc-.
+_PUMA560_DYN_TAIL = [
+    [0.0, 0.0, 0.0, 0.0, 0.0, 0.35, 0.0, 0.0, 0.0, 0.0, 291e-6, -62.6111, 0.0, 0.0, 0.0],
+    [17.4, 0.068, 0.006, -0.016, 0.13, 0.524, 0.539, 0.0, 0.0, 0.0, 409e-6, 107.815, 0.0, 0.0,
+     0.0],
+    [4.8, 0.0, -0.070, 0.014, 0.066, 0.0125, 0.066, 0.0, 0.0, 0.0, 299e-6, -53.7063, 0.0, 0.0,
+     0.0],
+    [0.82, 0.0, 0.0, -0.019, 1.8e-3, 1.8e-3, 1.3e-3, 0.0, 0.0, 0.0, 35e-6, 76.0364, 0.0, 0.0,
+     0.0],
+    [0.34, 0.0, 0.0, 0.0, 0.3e-3, 0.3e-3, 0.4e-3, 0.0, 0.0, 0.0, 35e-6, 71.923, 0.0, 0.0, 0.0],
+    [0.09, 0.0, 0.0, 0.032, 0.15e-3, 0.15e-3, 0.04e-3, 0.0, 0.0, 0.0, 35e-6, 76.686, 0.0, 0.0,
+     0.0],
+]
+
+# Joint ranges of the PUMA 560 in Craig's frame assignment [deg] (Craig, "Introduction to
+# Robotics", the PUMA 560 of chapter 3), the frames of HEMERO's dhp560.
+_PUMA560_LIMITS_DEG = [[-160.0, 160.0], [-225.0, 45.0], [-45.0, 225.0],
+                       [-110.0, 170.0], [-100.0, 100.0], [-266.0, 266.0]]
+
+
+def puma560() -> DHModel:
+    """
+    Return the PUMA 560 of HEMERO (``dhp560`` and its ``dyn`` table, book §A.2-§A.3).
+
+    Lengths in metres; joint limits from Craig's PUMA 560 in the same frames.
+
+    Examples
+    --------
+    >>> robot = puma560()
+    >>> robot.n, robot.dyn.shape, robot.joint_names[0]
+    (6, (6, 20), 'joint_1')
+
+    """
+    dyn = np.hstack([np.array(_PUMA560_DH), np.array(_PUMA560_DYN_TAIL)])
+    return dh_model(_PUMA560_DH, name='puma560', qlim=np.array(_PUMA560_LIMITS_DEG) * _DEG,
+                    dyn=dyn)
+
+
+def _check_lengths(**lengths: float) -> None:
+    for name, value in lengths.items():
+        if not (math.isfinite(value) and value > 0.0):
+            raise ValueError(f'{name} must be a finite length > 0 m, got {value!r}')
+
+
+def planar_rr(l1: float = 1.0, l2: float = 1.0) -> DHModel:
+    """
+    Return a planar 2R arm with links ``l1``, ``l2`` [m] (book §4.4, Ej. 4.4-4.5).
+
+    Craig's table ``[[0 0 θ1 0], [0 l1 θ2 0]]`` puts frame {2} at the elbow; the tip, at
+    ``l2`` along X_2, is the model's tool frame (``transl(l2, 0, 0)``), so ``fkine`` gives the
+    tip: ``x = l1 c1 + l2 c12``, ``y = l1 s1 + l2 s12``. Limits ±π.
+
+    Examples
+    --------
+    >>> from robotica_kin.forward_kinematics import fkine
+    >>> fkine(planar_rr(4.0, 3.0), [0.0, 0.0])[:3, 3].tolist()
+    [7.0, 0.0, 0.0]
+
+    """
+    _check_lengths(l1=l1, l2=l2)
+    return dh_model([[0.0, 0.0, 0.0, 0.0, 0.0], [0.0, l1, 0.0, 0.0, 0.0]], name='planar_rr',
+                    qlim=[[-math.pi, math.pi]] * 2, tool=_transl_x(l2))
+
+
+def planar_rrr(l1: float = 1.0, l2: float = 1.0, l3: float = 0.0) -> DHModel:
+    """
+    Return the planar 3R arm of Ej. 4.1 with links ``l1``, ``l2`` [m] and tool length ``l3`` [m].
+
+    Table 4.2: ``[[0 0 θ1 0], [0 l1 θ2 0], [0 l2 θ3 0]]``; frame {3} is at the end of link 2
+    and turns with θ3, so with ``l3 = 0`` (the book's model and Ej. H.3.1, with l1 = 4, l2 = 3)
+    ``fkine`` is (4.10). A positive ``l3`` adds a tool at ``l3`` along X_3. Limits ±π.
+
+    Examples
+    --------
+    >>> planar_rrr(4.0, 3.0).a.tolist()
+    [0.0, 4.0, 3.0]
+
+    """
+    _check_lengths(l1=l1, l2=l2)
+    if not (math.isfinite(l3) and l3 >= 0.0):
+        raise ValueError(f'l3 must be a finite length >= 0 m, got {l3!r}')
+    return dh_model([[0.0, 0.0, 0.0, 0.0, 0.0], [0.0, l1, 0.0, 0.0, 0.0],
+                     [0.0, l2, 0.0, 0.0, 0.0]], name='planar_rrr',
+                    qlim=[[-math.pi, math.pi]] * 3, tool=_transl_x(l3))
+
+
+def cylindrical_rpr(l2: float = 0.2, d2_max: float = 1.0) -> DHModel:
+    """
+    Return the R-P-R "cylindrical" robot of Ej. 4.2 (book Table 4.3, Craig fig. 4.4).
+
+    Table ``[[0 0 θ1 0 0], [π/2 0 0 d2 1], [0 0 θ3 l2 0]]``: joint 2 is prismatic, with
+    ``d2 = 0`` the minimum extension, so its limits are ``[0, d2_max]`` [m]; θ1 and θ3 have ±π.
+
+    Examples
+    --------
+    >>> cylindrical_rpr(0.3).prismatic.tolist()
+    [False, True, False]
+
+    """
+    _check_lengths(l2=l2, d2_max=d2_max)
+    return dh_model([[0.0, 0.0, 0.0, 0.0, 0.0], [math.pi / 2, 0.0, 0.0, 0.0, 1.0],
+                     [0.0, 0.0, 0.0, l2, 0.0]], name='cylindrical_rpr',
+                    qlim=[[-math.pi, math.pi], [0.0, d2_max], [-math.pi, math.pi]])
+
+
+ROBOT_NAMES = ('puma560', 'planar_rr', 'planar_rrr', 'cylindrical_rpr')
+"""Names accepted by :func:`robot_by_name` (each with its default dimensions)."""
+
+
+def robot_by_name(name: str) -> DHModel:
+    """
+    Return the built-in robot called ``name`` with its default dimensions.
+
+    Raises
+    ------
+    ValueError
+        For an unknown name; the message lists the known ones.
+
+    Examples
+    --------
+    >>> robot_by_name('puma560').n
+    6
+
+    """
+    factories = {'puma560': puma560, 'planar_rr': planar_rr, 'planar_rrr': planar_rrr,
+                 'cylindrical_rpr': cylindrical_rpr}
+    if name not in factories:
+        raise ValueError(f'unknown robot {name!r}; known robots: {", ".join(ROBOT_NAMES)}')
+    return factories[name]()
+
+
+def _transl_x(length: float) -> np.ndarray:
+    tool = np.eye(4)
+    tool[0, 3] = length
+    return tool
