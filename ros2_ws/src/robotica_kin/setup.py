@@ -21,6 +21,8 @@ setup(
     tests_require=['pytest'],
     entry_points={
         'console_scripts': [
+            'fk_node = robotica_kin.nodes.fk_node:main',
+            'ik_server = robotica_kin.nodes.ik_server:main',
         ],
     },
 )

@@ -7,15 +7,15 @@ import argparse
 import sys
 from typing import Optional
 
-from robotica_sim.cli import run
+from robotica_sim.cli import bench, run
 
-VERBS = {'run': run}
+VERBS = {'run': run, 'bench': bench}
 
 
 def build_parser() -> argparse.ArgumentParser:
     """Return the parser of the command and its verbs."""
     parser = argparse.ArgumentParser(
-        prog='robotica', description='Run, record and inspect robotica simulations.',
+        prog='robotica', description='Run, record, inspect and benchmark robotica.',
         formatter_class=argparse.ArgumentDefaultsHelpFormatter,
         epilog='example: robotica run demo')
     verbs = parser.add_subparsers(dest='verb', required=True, metavar='VERB')

@@ -1,0 +1,190 @@
+"""
+Conversions between the manipulator messages and the kinematics core (book §4.3).
+
+``robotica_msgs/DHTable`` ⇄ :class:`~robotica_kin.dh.DHModel` (Craig's modified DH, HEMERO rows
+``[alpha_{i-1} a_{i-1} theta_i d_i sigma_i]``), ``geometry_msgs/Pose`` ⇄ 4×4 homogeneous
+transform, and how the kinematics nodes choose their robot: a built-in name, a flattened table
+from a parameter, or the robot of a service request. A ``DHTable`` has no tool frame: a model's
+``tool`` does not travel in it.
+"""
+import math
+from typing import Optional, Sequence
+
+from geometry_msgs.msg import Point, Pose, Quaternion
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+from robotica_kin.dh import dh_model, DHModel
+from robotica_kin.robots import robot_by_name, ROBOT_NAMES
+from robotica_kin.transforms import ishomog, q2tr, tr2q
+from robotica_msgs.msg import DHParameter, DHTable
+
+QUATERNION_NORM_TOLERANCE = 1e-3   # |‖q‖ - 1| accepted (and normalised away) in a Pose
+
+
+def dh_table_message(robot: DHModel, frame_id: str = '') -> DHTable:
+    """
+    Return ``robot`` as a ``robotica_msgs/DHTable`` (its tool, if any, is not carried).
+
+    >>> from robotica_kin.robots import planar_rrr
+    >>> msg = dh_table_message(planar_rrr(4.0, 3.0), 'link_0')
+    >>> [link.a for link in msg.links], msg.joint_names[2], msg.header.frame_id
+    ([0.0, 4.0, 3.0], 'joint_3', 'link_0')
+    """
+    msg = DHTable(name=robot.name, joint_names=list(robot.joint_names))
+    msg.header.frame_id = frame_id
+    for alpha, a, theta, d, prismatic in zip(robot.alpha, robot.a, robot.theta, robot.d,
+                                             robot.prismatic):
+        msg.links.append(DHParameter(
+            alpha=float(alpha), a=float(a), theta=float(theta), d=float(d),
+            sigma=DHParameter.PRISMATIC if prismatic else DHParameter.REVOLUTE))
+    return msg
+
+
+def dh_model_from_message(msg: DHTable) -> DHModel:
+    """
+    Return the :class:`DHModel` of a ``DHTable`` (default limits; empty names: ``joint_i``).
+
+    Raises
+    ------
+    ValueError
+        For a table without rows, a sigma other than REVOLUTE (0) or PRISMATIC (1), non-finite
+        values, or joint names that are not one distinct name per row.
+
+    Examples
+    --------
+    >>> msg = dh_table_message(dh_model([[0, 0, 0, 0], [0, 1.0, 0, 0]], name='rr'))
+    >>> dh_model_from_message(msg).a.tolist()
+    [0.0, 1.0]
+
+    """
+    if not msg.links:
+        raise ValueError('the DH table has no links')
+    sigmas = [link.sigma for link in msg.links]
+    if any(s not in (DHParameter.REVOLUTE, DHParameter.PRISMATIC) for s in sigmas):
+        raise ValueError(f'sigma must be 0 (revolute) or 1 (prismatic), got {sigmas}')
+    table = [[link.alpha, link.a, link.theta, link.d, float(link.sigma)] for link in msg.links]
+    names = list(msg.joint_names) or None
+    return dh_model(table, name=msg.name or 'dh_table', joint_names=names)
+
+
+def pose_message(T: ArrayLike) -> Pose:
+    """
+    Return a homogeneous transform ``T`` (4, 4) [m] as a ``geometry_msgs/Pose``.
+
+    >>> from robotica_kin.transforms import rotz, transl
+    >>> p = pose_message(transl(1.0, 2.0, 3.0) @ rotz(math.pi))
+    >>> p.position.x, p.position.z, round(p.orientation.z, 12), round(p.orientation.w, 12)
+    (1.0, 3.0, 1.0, 0.0)
+    """
+    M = np.asarray(T, dtype=np.float64)
+    w, x, y, z = (float(v) for v in tr2q(M))
+    return Pose(position=Point(x=float(M[0, 3]), y=float(M[1, 3]), z=float(M[2, 3])),
+                orientation=Quaternion(x=x, y=y, z=z, w=w))
+
+
+def pose_matrix(pose: Pose) -> NDArray[np.float64]:
+    """
+    Return a ``geometry_msgs/Pose`` as a 4×4 homogeneous transform [m].
+
+    The quaternion must have unit norm within ``QUATERNION_NORM_TOLERANCE`` (it is then
+    normalised).
+
+    Raises
+    ------
+    ValueError
+        For a non-finite position or orientation, or a quaternion that is not a unit one.
+
+    Examples
+    --------
+    >>> pose_matrix(Pose(position=Point(x=1.0))).tolist()[0]
+    [1.0, 0.0, 0.0, 1.0]
+
+    """
+    p, o = pose.position, pose.orientation
+    position = [p.x, p.y, p.z]
+    quaternion = [o.w, o.x, o.y, o.z]
+    if not all(math.isfinite(v) for v in position + quaternion):
+        raise ValueError(f'pose must be finite, got position {position}, orientation '
+                         f'[w x y z] = {quaternion}')
+    norm = math.sqrt(sum(v * v for v in quaternion))
+    if abs(norm - 1.0) > QUATERNION_NORM_TOLERANCE:
+        raise ValueError(f'pose orientation must be a unit quaternion, got norm {norm:.6g}')
+    T = q2tr(quaternion)
+    T[:3, 3] = position
+    if not ishomog(T):
+        raise ValueError(f'pose is not a homogeneous transform: {T!r}')
+    return T
+
+
+def robot_from_parameters(robot: str, dh_table: Optional[Sequence[float]],
+                          joint_names: Optional[Sequence[str]] = None) -> DHModel:
+    """
+    Return a node's robot: the built-in ``robot`` or, when it is '', the flattened ``dh_table``.
+
+    Parameters
+    ----------
+    robot : str
+        A name of :data:`robotica_kin.robots.ROBOT_NAMES`, or '' to use ``dh_table``.
+    dh_table : sequence of float or None
+        HEMERO table (n, 5) flattened row-major ``[alpha a theta d sigma] * n`` [rad, m];
+        must be empty or None when ``robot`` is given.
+    joint_names : sequence of str or None
+        One name per joint; empty or None keeps the model's names.
+
+    Raises
+    ------
+    ValueError
+        For an unknown robot, both or neither of ``robot`` and ``dh_table``, a table whose
+        length is not a positive multiple of 5 or with NaN, or a wrong number of joint names.
+
+    Examples
+    --------
+    >>> robot_from_parameters('', [0, 0, 0, 0, 0, 0, 1.0, 0, 0, 0], ['a', 'b']).joint_names
+    ('a', 'b')
+    >>> robot_from_parameters('', [0.0, 1.0])
+    Traceback (most recent call last):
+    ...
+    ValueError: dh_table must hold n rows of 5 values [alpha a theta d sigma], got 2 values
+    >>> robot_from_parameters('puma560', [0.0, 0.0, 0.0, 0.0, 0.0])
+    Traceback (most recent call last):
+    ...
+    ValueError: robot 'puma560' and dh_table both given: set robot to '' to use dh_table
+
+    """
+    values = list(dh_table or [])
+    if robot and values:
+        raise ValueError(f"robot {robot!r} and dh_table both given: set robot to '' to use "
+                         'dh_table')
+    if robot:
+        model = robot_by_name(robot)
+    else:
+        if not values or len(values) % 5:
+            raise ValueError('dh_table must hold n rows of 5 values [alpha a theta d sigma], '
+                             f'got {len(values)} values')
+        model = dh_model(np.reshape(values, (-1, 5)), name='dh_table')
+    if not joint_names:
+        return model
+    return dh_model(model.table, name=model.name, qlim=model.qlim, joint_names=list(joint_names),
+                    dyn=model.dyn, tool=model.tool)
+
+
+def request_robot(robot: str, dh: DHTable, default: DHModel) -> DHModel:
+    """
+    Return the robot a service request asks for: ``robot`` by name, else ``dh``, else ``default``.
+
+    Raises
+    ------
+    ValueError
+        For an unknown robot name or a malformed table.
+
+    Examples
+    --------
+    >>> request_robot('', DHTable(), robot_by_name('planar_rr')).name
+    'planar_rr'
+
+    """
+    if robot:
+        return default if robot == default.name and robot in ROBOT_NAMES else robot_by_name(robot)
+    if dh.links:
+        return dh_model_from_message(dh)
+    return default

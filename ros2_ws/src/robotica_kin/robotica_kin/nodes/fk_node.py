@@ -1,0 +1,105 @@
+"""
+Forward-kinematics node: ``joint_states`` -> end-effector pose and link frames (book §4.3).
+
+For every ``sensor_msgs/JointState`` the node picks its robot's joints by name (in any order;
+other joints are ignored) and publishes, with the same stamp and in ``base_frame_id``:
+``~/end_effector_pose`` (geometry_msgs/PoseStamped, the tool frame ``T_0_tool``, book (4.6)) and
+``~/link_poses`` (geometry_msgs/PoseArray: Craig's frames {0} … {n}, then the tool). The DH
+table goes out once on the latched ``~/robot_description_dh`` (robotica_msgs/DHTable; no tool
+in it). The ``~/forward_kinematics`` service (robotica_msgs/ForwardKinematics) computes the pose
+of any built-in robot or DH table, or of the node's own robot when the request names none.
+
+The robot is the built-in ``robot`` or, when that is '', the flattened HEMERO table
+``dh_table``; an unknown robot or a malformed table stops the node at start-up (exit code 2).
+A joint-state message lacking a joint or with a NaN position is skipped with a warning.
+"""
+import math
+
+from geometry_msgs.msg import PoseArray, PoseStamped
+from rclpy.node import Node
+from rclpy.parameter import Parameter
+from robotica_kin.forward_kinematics import fkine, link_frames
+from robotica_kin.nodes.dh_messages import (dh_table_message, pose_message, request_robot,
+                                            robot_from_parameters)
+from robotica_kin.nodes.entry_point import run_node
+from robotica_kin.nodes.parameters import declare
+from robotica_kin.nodes.qos import LATCHED_QOS, STREAM_PUB_QOS, STREAM_SUB_QOS
+from robotica_kin.robots import ROBOT_NAMES
+from robotica_msgs.msg import DHTable
+from robotica_msgs.srv import ForwardKinematics
+from sensor_msgs.msg import JointState
+
+WARN_PERIOD = 5.0   # [s] between repeated warnings about bad joint states
+
+
+class ForwardKinematicsNode(Node):
+    """ROS shell around :func:`robotica_kin.forward_kinematics.fkine` and ``link_frames``."""
+
+    def __init__(self) -> None:
+        super().__init__('fk_node')
+        robot = declare(self, 'robot', 'puma560',
+                        f'Built-in robot, one of {ROBOT_NAMES}; empty: use dh_table',
+                        read_only=True)
+        dh_table = declare(self, 'dh_table', Parameter.Type.DOUBLE_ARRAY,
+                           'HEMERO DH table [alpha_{i-1} a_{i-1} theta_i d_i sigma_i] * n '
+                           '[rad, m], book Table 4.2, flattened row-major; used when robot '
+                           "is ''", read_only=True)
+        joint_names = declare(self, 'joint_names', Parameter.Type.STRING_ARRAY,
+                              'Joint names in joint_states, one per DH row; default the '
+                              "model's (joint_1 … joint_n)", read_only=True)
+        self._frame = declare(self, 'base_frame_id', 'link_0',
+                              'Frame {0} of the robot: frame_id of every pose', read_only=True)
+        self._robot = robot_from_parameters(robot, dh_table, joint_names)
+
+        self._pose_pub = self.create_publisher(PoseStamped, '~/end_effector_pose',
+                                               STREAM_PUB_QOS)
+        self._links_pub = self.create_publisher(PoseArray, '~/link_poses', STREAM_PUB_QOS)
+        description = self.create_publisher(DHTable, '~/robot_description_dh', LATCHED_QOS)
+        table = dh_table_message(self._robot, self._frame)
+        table.header.stamp = self.get_clock().now().to_msg()
+        description.publish(table)
+        self.create_subscription(JointState, 'joint_states', self._on_joint_states,
+                                 STREAM_SUB_QOS)
+        self.create_service(ForwardKinematics, '~/forward_kinematics', self._on_fk_request)
+        self.get_logger().info(f'robot {self._robot.name!r}, {self._robot.n} joints '
+                               f'{list(self._robot.joint_names)}')
+
+    def _on_joint_states(self, msg: JointState) -> None:
+        index = {name: i for i, name in enumerate(msg.name) if i < len(msg.position)}
+        missing = [j for j in self._robot.joint_names if j not in index]
+        if missing:
+            self.get_logger().warn(f'joint_states lacks positions of {missing}; skipped',
+                                   throttle_duration_sec=WARN_PERIOD)
+            return
+        q = [msg.position[index[j]] for j in self._robot.joint_names]
+        if not all(math.isfinite(v) for v in q):
+            self.get_logger().warn(f'non-finite joint position in {q}; skipped',
+                                   throttle_duration_sec=WARN_PERIOD)
+            return
+        frames = link_frames(self._robot, q)
+        tool = fkine(self._robot, q)
+        pose = PoseStamped(pose=pose_message(tool))
+        pose.header.stamp = msg.header.stamp
+        pose.header.frame_id = self._frame
+        links = PoseArray(header=pose.header,
+                          poses=[pose_message(T) for T in frames] + [pose.pose])
+        self._pose_pub.publish(pose)
+        self._links_pub.publish(links)
+
+    def _on_fk_request(self, request: ForwardKinematics.Request,
+                       response: ForwardKinematics.Response) -> ForwardKinematics.Response:
+        try:
+            robot = request_robot(request.robot, request.dh, self._robot)
+            response.pose = pose_message(fkine(robot, list(request.q)))
+        except ValueError as err:
+            response.success = False
+            response.message = str(err)
+            self.get_logger().warn(f'forward_kinematics refused: {err}')
+            return response
+        response.success = True
+        return response
+
+
+def main(args=None) -> None:
+    """Run the forward-kinematics node until Ctrl-C."""
+    run_node(ForwardKinematicsNode, args)

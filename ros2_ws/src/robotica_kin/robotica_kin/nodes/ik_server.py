@@ -1,0 +1,85 @@
+"""
+Inverse-kinematics server: the ``~/inverse_kinematics`` service (HEMERO ``ikine``, book §4.4).
+
+Each ``robotica_msgs/InverseKinematics`` request is solved numerically by
+:func:`robotica_kin.ik.ikine_solve` for the robot it names (``robot``), else the DH table it
+carries (``dh``), else the node's robot (parameters ``robot`` or ``dh_table``). Zero ``stol``
+and ``ilimit`` mean the defaults 1e-6 and 1000; an empty ``q0`` or ``mask`` means the solver's
+default. A solver that does not converge answers ``converged = false`` with its last iterate and
+a message; bad input (unknown robot, NaN, wrong sizes, a non-unit quaternion, a negative
+``ilimit``) answers ``converged = false``, an empty ``q`` and the reason. The node never stops on
+a request.
+"""
+import math
+
+from numpy.linalg import LinAlgError
+from rclpy.node import Node
+from rclpy.parameter import Parameter
+from robotica_kin.ik import ikine_solve
+from robotica_kin.nodes.dh_messages import pose_matrix, request_robot, robot_from_parameters
+from robotica_kin.nodes.entry_point import run_node
+from robotica_kin.nodes.parameters import declare
+from robotica_kin.robots import ROBOT_NAMES
+from robotica_msgs.srv import InverseKinematics
+
+DEFAULT_STOL = 1e-6      # pose-error tolerance used when a request gives 0
+DEFAULT_ILIMIT = 1000    # iterations used when a request gives 0
+
+
+def _solver_options(request: InverseKinematics.Request) -> dict:
+    """Return the keyword arguments of ``ikine_solve`` for a request, or raise ValueError."""
+    if not (math.isfinite(request.stol) and request.stol >= 0.0):
+        raise ValueError(f'stol must be finite and >= 0 (0: {DEFAULT_STOL}), got {request.stol}')
+    if request.ilimit < 0:
+        raise ValueError(f'ilimit must be >= 0 (0: {DEFAULT_ILIMIT}), got {request.ilimit}')
+    return {'stol': request.stol or DEFAULT_STOL,
+            'ilimit': request.ilimit or DEFAULT_ILIMIT,
+            'q0': list(request.q0) or None,
+            'mask': list(request.mask) or None}
+
+
+class InverseKinematicsServer(Node):
+    """ROS shell around :func:`robotica_kin.ik.ikine_solve`."""
+
+    def __init__(self) -> None:
+        super().__init__('ik_server')
+        robot = declare(self, 'robot', 'puma560',
+                        f'Default robot of the requests, one of {ROBOT_NAMES}; empty: use '
+                        'dh_table', read_only=True)
+        dh_table = declare(self, 'dh_table', Parameter.Type.DOUBLE_ARRAY,
+                           'HEMERO DH table [alpha_{i-1} a_{i-1} theta_i d_i sigma_i] * n '
+                           '[rad, m], book Table 4.2, flattened row-major; used when robot '
+                           "is ''", read_only=True)
+        self._robot = robot_from_parameters(robot, dh_table)
+        self.create_service(InverseKinematics, '~/inverse_kinematics', self._on_request)
+        self.get_logger().info(f'default robot {self._robot.name!r} ({self._robot.n} joints)')
+
+    def _on_request(self, request: InverseKinematics.Request,
+                    response: InverseKinematics.Response) -> InverseKinematics.Response:
+        self.get_logger().debug(f'inverse_kinematics request: {request}')
+        try:
+            robot = request_robot(request.robot, request.dh, self._robot)
+            options = _solver_options(request)
+            result = ikine_solve(robot, pose_matrix(request.pose), **options)
+        except (ValueError, LinAlgError) as err:
+            response.converged = False
+            response.message = str(err)
+            self.get_logger().warn(f'inverse_kinematics refused: {err}')
+            return response
+        response.q = [float(v) for v in result.q]
+        response.converged = bool(result.success)
+        response.iterations = int(result.iterations)
+        response.residual = float(result.residual)
+        if not response.converged:
+            stol = options['stol']
+            response.message = (f'no solution within the joint limits: residual '
+                                f'{response.residual:.3g} after {response.iterations} '
+                                f'iterations (stol {stol:g}); q is the last iterate')
+            self.get_logger().warn(f'inverse_kinematics for {robot.name!r}: '
+                                   f'{response.message}')
+        return response
+
+
+def main(args=None) -> None:
+    """Run the inverse-kinematics server until Ctrl-C."""
+    run_node(InverseKinematicsServer, args)
