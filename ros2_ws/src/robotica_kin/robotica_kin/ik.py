@@ -284,12 +284,13 @@ class _Solver:
         search = self._search_local if self.rows is None else self._search_world
         iterations = 0
         for start in self._starts(q0, goal_n):
-            q, used, done = search(start, goal_n, p_d, R_d, min(self.slimit, ilimit - iterations))
+            q, used, residual = search(start, goal_n, p_d, R_d,
+                                       min(self.slimit, ilimit - iterations))
             iterations += used
-            if done:
+            if residual < self.stol:
                 fitted = self._fit_limits(q)
                 if fitted is not None:
-                    return fitted, True, iterations, self._residual(p_d, R_d, self.rows is None)
+                    return fitted, True, iterations, residual
             if iterations >= ilimit:
                 break
         self._world_error(q, p_d, R_d)
@@ -297,8 +298,8 @@ class _Solver:
 
     def _search_local(self, q: NDArray[np.float64], goal_n: Any, p_d: NDArray[np.float64],
                       R_d: NDArray[np.float64],
-                      limit: int) -> tuple[NDArray[np.float64], int, bool]:
-        """Iterate from q without a mask; return (q, iterations, converged)."""
+                      limit: int) -> tuple[NDArray[np.float64], int, float]:
+        """Iterate from q without a mask; return (q, iterations, residual or inf)."""
         model, data, n = self.c.model, self.data, self.c.n
         tol_sq = self.stol * self.stol
         newton = self.newton
@@ -308,8 +309,10 @@ class _Solver:
             J = compute_jacobian(model, data, q, n)
             e = log6(data.iMf[0].actInv(goal_n)).vector
             err_sq = e.dot(e)
-            if err_sq < tol_sq and self._residual(p_d, R_d, True) < self.stol:
-                return q, k, True
+            if err_sq < tol_sq:
+                residual = self._residual(p_d, R_d, True)
+                if residual < self.stol:
+                    return q, k, residual
             if k == limit:
                 break
             if newton and err_sq < _NEWTON_ERROR_SQ:
@@ -324,19 +327,19 @@ class _Solver:
             if info != 0:
                 break
             q = q + dq
-        return q, limit, False
+        return q, limit, math.inf
 
     def _search_world(self, q: NDArray[np.float64], goal_n: Any, p_d: NDArray[np.float64],
                       R_d: NDArray[np.float64],
-                      limit: int) -> tuple[NDArray[np.float64], int, bool]:
-        """Iterate from q with a mask (error in {0}); return (q, iterations, converged)."""
+                      limit: int) -> tuple[NDArray[np.float64], int, float]:
+        """Iterate from q with a mask (error in {0}); return (q, iterations, residual or inf)."""
         tol_sq = self.stol * self.stol
         n = self.c.n
         for k in range(limit + 1):
             e, J = self._world_error(q, p_d, R_d)
             err_sq = e.dot(e)
             if err_sq < tol_sq:
-                return q, k, True
+                return q, k, math.sqrt(err_sq)
             if k == limit:
                 break
             Jt = J.T
@@ -346,7 +349,7 @@ class _Solver:
             if info != 0:
                 break
             q = q + dq
-        return q, limit, False
+        return q, limit, math.inf
 
 
 def ikine_solve(dh: DHModel | ArrayLike, T: ArrayLike, stol: float = 1e-6, ilimit: int = 1000,
@@ -399,6 +402,9 @@ def ikine_solve(dh: DHModel | ArrayLike, T: ArrayLike, stol: float = 1e-6, ilimi
     if start is not None and start.ndim != 1:
         raise ValueError(f'q0 must have shape ({robot.n},), got {start.shape}')
     solver = _Solver(robot, _as_mask(mask), float(stol), int(slimit), seed, int(seed_count))
+    if single:
+        q1, ok, used, res = solver.solve(poses[0], start, int(ilimit))
+        return IKResult(q=q1, success=ok, iterations=used, residual=res)
     m = poses.shape[0]
     q = np.empty((m, robot.n))
     success = np.zeros(m, dtype=bool)
@@ -408,9 +414,6 @@ def ikine_solve(dh: DHModel | ArrayLike, T: ArrayLike, stol: float = 1e-6, ilimi
         q[k], success[k], iterations[k], residual[k] = solver.solve(poses[k], start, int(ilimit))
         if success[k]:
             start = q[k]
-    if single:
-        return IKResult(q=q[0], success=bool(success[0]), iterations=int(iterations[0]),
-                        residual=float(residual[0]))
     return IKResult(q=q, success=success, iterations=iterations, residual=residual)
 
 
