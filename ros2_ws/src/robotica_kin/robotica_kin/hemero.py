@@ -22,6 +22,8 @@ velprop                :mod:`robotica_kin.velocity_propagation` (4.52)-(4.58)
 tr2diff diff2tr        :mod:`robotica_kin.differential_motion` ([H] (3.1)-(3.27))
 tr2jac
 plotbot                :mod:`robotica_kin.plotbot`
+rne inertia gravity    :mod:`robotica_kin.dynamics` (ch. 5, §A.3; Pinocchio RNEA, CRBA, ABA)
+coriolis friction fdyn
 dhp560 (+ dyn)         :func:`robotica_kin.robots.puma560`
 =====================  ============================================================
 
@@ -33,6 +35,7 @@ keyword (the book's examples and its manual disagree on their order, catalog §1
 
 from robotica_kin.dh import linktrans
 from robotica_kin.differential_motion import diff2tr, tr2diff, tr2jac
+from robotica_kin.dynamics import coriolis, fdyn, friction, gravity, inertia, rne
 from robotica_kin.forward_kinematics import fkine
 from robotica_kin.ik import IKError, ikine, ikine_solve, IKResult
 from robotica_kin.jacobian import jacob0, jacobn
@@ -43,8 +46,8 @@ from robotica_kin.transforms import (angvec2tr, eul2tr, ishomog, q2tr, rotvec, r
 from robotica_kin.velocity_propagation import velprop
 
 __all__ = [
-    'IKError', 'IKResult', 'angvec2tr', 'diff2tr', 'eul2tr', 'fkine', 'ikine', 'ikine_solve',
-    'ishomog', 'jacob0', 'jacobn', 'linktrans', 'plotbot', 'puma560', 'q2tr', 'rotvec', 'rotx',
-    'roty', 'rotz', 'rpy2tr', 'tr2angvec', 'tr2diff', 'tr2eul', 'tr2jac', 'tr2q', 'tr2rpy',
-    'transl', 'trinv', 'velprop',
+    'IKError', 'IKResult', 'angvec2tr', 'coriolis', 'diff2tr', 'eul2tr', 'fdyn', 'fkine',
+    'friction', 'gravity', 'ikine', 'ikine_solve', 'inertia', 'ishomog', 'jacob0', 'jacobn',
+    'linktrans', 'plotbot', 'puma560', 'q2tr', 'rne', 'rotvec', 'rotx', 'roty', 'rotz', 'rpy2tr',
+    'tr2angvec', 'tr2diff', 'tr2eul', 'tr2jac', 'tr2q', 'tr2rpy', 'transl', 'trinv', 'velprop',
 ]

@@ -16,7 +16,8 @@ import numpy as np
 
 from robotica_kin.dh import dh_model, DHModel
 
-__all__ = ['ROBOT_NAMES', 'cylindrical_rpr', 'planar_rr', 'planar_rrr', 'puma560', 'robot_by_name']
+__all__ = ['ROBOT_NAMES', 'cylindrical_rpr', 'planar_rr', 'planar_rrr', 'puma560', 'robot_by_name',
+           'two_link_arm']
 
 _DEG = math.pi / 180.0
 
@@ -134,6 +135,35 @@ def cylindrical_rpr(l2: float = 0.2, d2_max: float = 1.0) -> DHModel:
     return dh_model([[0.0, 0.0, 0.0, 0.0, 0.0], [math.pi / 2, 0.0, 0.0, 0.0, 1.0],
                      [0.0, 0.0, 0.0, l2, 0.0]], name='cylindrical_rpr',
                     qlim=[[-math.pi, math.pi], [0.0, d2_max], [-math.pi, math.pi]])
+
+
+def two_link_arm(m1: float, m2: float, l1: float,
+                 l2: float) -> tuple[np.ndarray, np.ndarray]:
+    """
+    Return ``(dh, dyn)`` of the planar 2R of Ej. 5.1: point masses at the link ends.
+
+    ``dh = [[0 0 θ1 0 0], [0 l1 θ2 0 0]]``; in ``dyn`` link i has mass m_i [kg] at
+    ``l_i X̂_i`` [m] (5.54), no inertia tensor, gear ratio 1 and no friction. The planar
+    arm moves in the XY plane, so use ``grav = [0, -g, 0]`` as the book does (5.58).
+
+    Examples
+    --------
+    >>> dh, dyn = two_link_arm(2.0, 1.0, 3.0, 1.0)
+    >>> dyn[:, [5, 6, 16]].tolist()
+    [[2.0, 3.0, 1.0], [1.0, 1.0, 1.0]]
+
+    """
+    _check_lengths(l1=l1, l2=l2)
+    for name, mass in (('m1', m1), ('m2', m2)):
+        if not (math.isfinite(mass) and mass >= 0.0):
+            raise ValueError(f'{name} must be a finite mass >= 0 kg, got {mass!r}')
+    dh = np.array([[0.0, 0.0, 0.0, 0.0, 0.0], [0.0, l1, 0.0, 0.0, 0.0]])
+    dyn = np.zeros((2, 20))
+    dyn[:, :5] = dh
+    dyn[:, 5] = [m1, m2]
+    dyn[:, 6] = [l1, l2]
+    dyn[:, 16] = 1.0
+    return dh, dyn
 
 
 ROBOT_NAMES = ('puma560', 'planar_rr', 'planar_rrr', 'cylindrical_rpr')

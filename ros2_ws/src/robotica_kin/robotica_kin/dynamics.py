@@ -1,0 +1,305 @@
+"""
+Manipulator dynamics on Pinocchio with HEMERO's names (book ch. 5, §A.3; catalog Part 3, §12.4).
+
+The model is (A.1), ``tau = M(q) q'' + G(q) + V(q, q') + F(q')``:
+
+- ``M`` inertia matrix (Pinocchio's CRBA), including the reflected motor inertia ``J_m G²``;
+- ``G`` gravity torques for the gravity acceleration ``grav`` in the base frame {0}
+  (default ``[0, 0, -9.81]`` m/s²: the base's z axis points up; the book's planar examples use
+  ``[0, -9.81, 0]``);
+- ``V`` centrifugal and Coriolis torques (5.82);
+- ``F`` joint friction from the ``dyn`` table, referred to the motor shaft as in HEMERO:
+  ``F = G² B q' + |G| Tc`` with ``Tc = Tc+`` for q' > 0, ``Tc-`` for q' < 0 and 0 at rest
+  (the book leaves sgn(0) undefined, (5.4)).
+
+``rne`` is Pinocchio's recursive Newton-Euler (Craig's algorithm, §5.5.2) plus ``F``; ``fdyn``
+integrates (5.88) with Pinocchio's ABA and an adaptive Runge-Kutta 4(5) (SciPy's ``RK45``, the
+method of MATLAB's ``ode45``).
+
+``dyn`` is a :class:`~robotica_kin.dh.DHModel` that carries a ``dyn`` table (e.g.
+``robots.puma560()``) or a raw HEMERO table of 20 columns (book §A.3).
+"""
+
+from dataclasses import dataclass
+import functools
+from typing import Any, Callable
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+import pinocchio as pin
+from robotica_kin.dh import dh_model, DHModel
+from scipy.integrate import solve_ivp
+
+__all__ = ['DEFAULT_GRAVITY', 'FdynResult', 'coriolis', 'coriolis_matrix', 'fdyn', 'friction',
+           'gravity', 'inertia', 'rne']
+
+DEFAULT_GRAVITY = (0.0, 0.0, -9.81)
+"""Gravity acceleration in the base frame {0} [m/s²] when ``grav`` is not given."""
+
+
+@functools.lru_cache(maxsize=16)
+def _cached_dyn_model(shape: tuple[int, ...], data: bytes) -> DHModel:
+    table = np.frombuffer(data, dtype=np.float64).reshape(shape)
+    return dh_model(table[:, :5], dyn=table)
+
+
+def _robot(dyn: DHModel | ArrayLike) -> DHModel:
+    """Return a DHModel with a dyn table, or raise ValueError."""
+    if isinstance(dyn, DHModel):
+        if dyn.dyn is None:
+            raise ValueError(f'robot {dyn.name!r} has no dyn table (dynamic parameters)')
+        return dyn
+    table = np.ascontiguousarray(dyn, dtype=np.float64)
+    if table.ndim != 2 or table.shape[1] != 20 or table.shape[0] == 0:
+        raise ValueError(f'dyn must be a DHModel with dynamics or an (n, 20) HEMERO table, got '
+                         f'shape {table.shape}')
+    return _cached_dyn_model(table.shape, table.tobytes())
+
+
+def _model_and_data(robot: DHModel, grav: ArrayLike | None) -> tuple[Any, Any]:
+    """Return this thread's copy of the Pinocchio model with gravity ``grav``, and its data."""
+    scratch = robot._scratch
+    model = getattr(scratch, 'dynamics_model', None)
+    if model is None:
+        model = pin.Model(robot.pinocchio_model)
+        scratch.dynamics_model = model
+        scratch.dynamics_data = model.createData()
+    g = np.asarray(DEFAULT_GRAVITY if grav is None else grav, dtype=np.float64)
+    if g.shape != (3,) or not np.isfinite(g).all():
+        raise ValueError(f'grav must be a finite 3-vector [m/s^2] in frame {{0}}, got {grav!r}')
+    model.gravity = pin.Motion(g, np.zeros(3))
+    return model, scratch.dynamics_data
+
+
+def _vectors(robot: DHModel, **arrays: ArrayLike) -> tuple[NDArray[np.float64], ...]:
+    """Return the arrays as (m, n) float64, all with the same m, or raise ValueError."""
+    out = [robot.check_q(value, name) for name, value in arrays.items()]
+    shapes = {a.shape for a in out}
+    if len(shapes) != 1:
+        raise ValueError(f'{", ".join(arrays)} must have the same shape, got '
+                         f'{[a.shape for a in out]}')
+    return tuple(np.atleast_2d(a) for a in out)
+
+
+def _single(result: NDArray[np.float64], like: ArrayLike) -> NDArray[np.float64]:
+    return result[0] if np.ndim(like) == 1 else result
+
+
+def friction(dyn: DHModel | ArrayLike, qd: ArrayLike) -> NDArray[np.float64]:
+    """
+    Return the joint friction torques F(q') [N m or N] of the ``dyn`` table (book (5.84)-(5.86)).
+
+    ``F = G² B q' + |G| Tc`` per joint, with B the viscous and Tc± the Coulomb friction of
+    columns 18-20, referred to the motor shaft, and G the gear ratio (HEMERO §A.3); Tc is
+    Tc+ for q' > 0, Tc- for q' < 0 and 0 for q' = 0. Shape of ``qd``: (n,) or (m, n).
+
+    Examples
+    --------
+    >>> row = [0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 2.0, 0.5, 0.1, -0.1]
+    >>> friction([row], [3.0]), friction([row], [-3.0])
+    (array([6.2]), array([-6.2]))
+
+    """
+    robot = _robot(dyn)
+    (v,) = _vectors(robot, qd=qd)
+    table = robot.dyn
+    assert table is not None
+    gear, viscous, tc_pos, tc_neg = table[:, 16], table[:, 17], table[:, 18], table[:, 19]
+    coulomb = np.where(v > 0.0, tc_pos, np.where(v < 0.0, tc_neg, 0.0))
+    return _single(gear ** 2 * viscous * v + np.abs(gear) * coulomb, qd)
+
+
+def rne(dyn: DHModel | ArrayLike, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike,
+        grav: ArrayLike | None = None) -> NDArray[np.float64]:
+    """
+    Return the joint torques ``tau = M q'' + G + V + F`` (recursive Newton-Euler, §5.5.2).
+
+    Parameters
+    ----------
+    dyn : DHModel or array_like, shape (n, 20)
+        The robot with its dynamic parameters.
+    q, qd, qdd : array_like, shape (n,) or (m, n)
+        Joint positions [rad | m], velocities and accelerations (one row per sample).
+    grav : array_like, shape (3,), optional
+        Gravity acceleration in {0} [m/s²]; default ``[0, 0, -9.81]``.
+
+    Returns
+    -------
+    ndarray, shape (n,) or (m, n)
+        Joint torques [N m] (forces [N] for prismatic joints).
+
+    Raises
+    ------
+    ValueError
+        For a robot without dynamics, sizes that do not match, or NaN.
+
+    Examples
+    --------
+    Ej. 5.1 at rest, stretched horizontally: tau = g (l1 (m1 + m2) + l2 m2, l2 m2).
+
+    >>> from robotica_kin.robots import two_link_arm
+    >>> _, dyn = two_link_arm(2.0, 1.0, 3.0, 1.0)
+    >>> rne(dyn, [0, 0], [0, 0], [0, 0], grav=[0, -9.81, 0]).round(6)
+    array([98.1 ,  9.81])
+
+    """
+    robot = _robot(dyn)
+    qq, vv, aa = _vectors(robot, q=q, qd=qd, qdd=qdd)
+    model, data = _model_and_data(robot, grav)
+    tau = np.array([pin.rnea(model, data, qq[k], vv[k], aa[k]) for k in range(qq.shape[0])])
+    return _single(tau + np.atleast_2d(friction(robot, vv)), q)
+
+
+def inertia(dyn: DHModel | ArrayLike, q: ArrayLike) -> NDArray[np.float64]:
+    """
+    Return the joint-space inertia matrix M(q) [kg m²] (book (5.7); Pinocchio's CRBA).
+
+    Symmetric positive definite; includes the reflected motor inertias ``J_m G²``. Shape
+    (n, n) for q of shape (n,), (m, n, n) for (m, n).
+
+    Examples
+    --------
+    >>> from robotica_kin.robots import two_link_arm
+    >>> _, dyn = two_link_arm(2.0, 1.0, 3.0, 1.0)
+    >>> inertia(dyn, [0.0, 0.0])     # (5.77): [[l2² m2 + 2 l1 l2 m2 + l1² (m1 + m2), ...]]
+    array([[34.,  4.],
+           [ 4.,  1.]])
+
+    """
+    robot = _robot(dyn)
+    (qq,) = _vectors(robot, q=q)
+    model, data = _model_and_data(robot, None)
+    out = np.empty((qq.shape[0], robot.n, robot.n))
+    for k in range(qq.shape[0]):
+        upper = pin.crba(model, data, qq[k])
+        out[k] = np.triu(upper) + np.triu(upper, 1).T
+    return _single(out, q)
+
+
+def gravity(dyn: DHModel | ArrayLike, q: ArrayLike,
+            grav: ArrayLike | None = None) -> NDArray[np.float64]:
+    """
+    Return the gravity torques G(q) [N m] (book (5.7); HEMERO ``gravity``/``gravedad``).
+
+    ``grav`` is the gravity acceleration in {0} [m/s²], default ``[0, 0, -9.81]``.
+
+    Examples
+    --------
+    >>> from robotica_kin.robots import two_link_arm
+    >>> _, dyn = two_link_arm(2.0, 1.0, 3.0, 1.0)
+    >>> gravity(dyn, [0.0, 0.0], grav=[0, -9.81, 0]).round(6)
+    array([98.1 ,  9.81])
+
+    """
+    robot = _robot(dyn)
+    (qq,) = _vectors(robot, q=q)
+    model, data = _model_and_data(robot, grav)
+    return _single(np.array([pin.computeGeneralizedGravity(model, data, qk) for qk in qq]), q)
+
+
+def coriolis(dyn: DHModel | ArrayLike, q: ArrayLike, qd: ArrayLike) -> NDArray[np.float64]:
+    """
+    Return the centrifugal and Coriolis torques V(q, q') [N m] (book (5.7), (5.82)).
+
+    Examples
+    --------
+    Ej. 5.1, (5.77): V = (-m2 l1 l2 s2 θ2'² - 2 m2 l1 l2 s2 θ1' θ2', m2 l1 l2 s2 θ1'²).
+
+    >>> from robotica_kin.robots import two_link_arm
+    >>> _, dyn = two_link_arm(2.0, 1.0, 3.0, 1.0)
+    >>> coriolis(dyn, [0.0, np.pi / 2], [1.0, 0.0]).round(9)
+    array([-0.,  3.])
+
+    """
+    robot = _robot(dyn)
+    qq, vv = _vectors(robot, q=q, qd=qd)
+    model, data = _model_and_data(robot, [0.0, 0.0, 0.0])
+    return _single(np.array([pin.nonLinearEffects(model, data, qq[k], vv[k])
+                             for k in range(qq.shape[0])]), q)
+
+
+def coriolis_matrix(dyn: DHModel | ArrayLike, q: ArrayLike,
+                    qd: ArrayLike) -> NDArray[np.float64]:
+    """
+    Return V_m(q, q') with ``V = V_m q'`` and ``M' - 2 V_m`` skew-symmetric (book (5.82)-(5.83)).
+
+    Pinocchio's ``computeCoriolisMatrix``; q and qd of shape (n,).
+    """
+    robot = _robot(dyn)
+    qq, vv = _vectors(robot, q=q, qd=qd)
+    if qq.shape[0] != 1 or np.ndim(q) != 1:
+        raise ValueError('coriolis_matrix takes one configuration, q of shape (n,)')
+    model, data = _model_and_data(robot, None)
+    return np.array(pin.computeCoriolisMatrix(model, data, qq[0], vv[0]))
+
+
+@dataclass(frozen=True)
+class FdynResult:
+    """Trajectory of :func:`fdyn`: times (k,) [s], q and qd of shape (k, n)."""
+
+    t: NDArray[np.float64]
+    q: NDArray[np.float64]
+    qd: NDArray[np.float64]
+
+
+def fdyn(dyn: DHModel | ArrayLike, t0: float, tf: float,
+         torquefun: Callable[[float, NDArray[np.float64], NDArray[np.float64]], ArrayLike] | None,
+         q0: ArrayLike, qd0: ArrayLike, grav: ArrayLike | None = None, *,
+         max_step: float = np.inf, rtol: float = 1e-8, atol: float = 1e-10,
+         t_eval: ArrayLike | None = None) -> FdynResult:
+    """
+    Integrate the forward dynamics (5.88) from t0 to tf (HEMERO ``fdyn``, book §5.7).
+
+    ``q'' = M^-1 (tau - V - G - F)`` by Pinocchio's articulated-body algorithm, with the
+    adaptive Runge-Kutta 4(5) of SciPy (``RK45``, MATLAB's ``ode45``).
+
+    Parameters
+    ----------
+    dyn : DHModel or array_like, shape (n, 20)
+        The robot with its dynamic parameters.
+    t0, tf : float
+        Start and end time [s], tf > t0.
+    torquefun : callable or None
+        ``torquefun(t, q, qd)`` → joint torques (n,) [N m]; None for zero torque.
+    q0, qd0 : array_like, shape (n,)
+        Initial joint positions and velocities.
+    grav : array_like, shape (3,), optional
+        Gravity acceleration in {0} [m/s²]; default ``[0, 0, -9.81]``.
+    max_step, rtol, atol : float
+        Integrator settings (largest step [s], relative and absolute tolerances).
+    t_eval : array_like, optional
+        Times at which to report the solution; default the integrator's own steps.
+
+    Returns
+    -------
+    FdynResult
+
+    Raises
+    ------
+    ValueError
+        For bad sizes, NaN, tf <= t0, or a torque function that returns a wrong size or NaN.
+
+    """
+    robot = _robot(dyn)
+    start, speed = _vectors(robot, q0=q0, qd0=qd0)
+    if start.shape[0] != 1 or np.ndim(q0) != 1:
+        raise ValueError(f'q0 and qd0 must have shape ({robot.n},)')
+    if not (np.isfinite(t0) and np.isfinite(tf) and tf > t0):
+        raise ValueError(f'need finite t0 < tf, got t0={t0!r}, tf={tf!r}')
+    model, data = _model_and_data(robot, grav)
+    n = robot.n
+
+    def derivative(t: float, x: NDArray[np.float64]) -> NDArray[np.float64]:
+        q, qd = x[:n], x[n:]
+        tau = np.zeros(n) if torquefun is None else np.asarray(torquefun(t, q, qd), dtype=float)
+        if tau.shape != (n,) or not np.isfinite(tau).all():
+            raise ValueError(f'torquefun must return {n} finite torques at t = {t}, got {tau!r}')
+        qdd = pin.aba(model, data, q, qd, tau - friction(robot, qd))
+        return np.concatenate((qd, qdd))
+
+    solution = solve_ivp(derivative, (float(t0), float(tf)), np.concatenate((start[0], speed[0])),
+                         method='RK45', max_step=max_step, rtol=rtol, atol=atol, t_eval=t_eval)
+    if not solution.success:
+        raise ValueError(f'fdyn: integration failed: {solution.message}')
+    states = solution.y.T
+    return FdynResult(t=solution.t, q=states[:, :n].copy(), qd=states[:, n:].copy())
