@@ -57,6 +57,29 @@ def spin():
     return spin_until
 
 
+def call_service(executor, client, request, attempts: int = 3, timeout: float = 10.0):
+    """
+    Call a service and return its response, sending the request again if no answer comes.
+
+    ``wait_for_service`` can return before the server's reply writer has matched the client's
+    reply reader; a request answered in that window is lost (the reply has nowhere to go). The
+    services of robotica are idempotent, so asking again is safe; ``None`` after ``attempts``.
+    """
+    assert client.wait_for_service(timeout_sec=15.0)
+    for _ in range(attempts):
+        future = client.call_async(request)
+        if spin_until(executor, future.done, timeout):
+            return future.result()
+        client.remove_pending_request(future)
+    return None
+
+
+@pytest.fixture
+def call():
+    """Return :func:`call_service`."""
+    return call_service
+
+
 def executable(package: str, name: str) -> str:
     """Return the installed executable of a node (``ros2 run`` would run the same file)."""
     from ament_index_python.packages import get_package_prefix

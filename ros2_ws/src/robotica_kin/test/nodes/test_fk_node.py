@@ -77,11 +77,10 @@ def fk(start_node, ros_node, spin):
     return proc, node, executor, joints, poses, links
 
 
-def _call(node, executor, spin, client, request):
-    assert client.wait_for_service(timeout_sec=15.0)
-    future = client.call_async(request)
-    assert spin(executor, future.done)
-    return future.result()
+def _call(node, executor, call, client, request):
+    response = call(executor, client, request)
+    assert response is not None, 'no answer from fk_node'
+    return response
 
 
 def test_end_effector_pose_and_link_frames(fk, spin):
@@ -121,33 +120,33 @@ def test_missing_or_nan_joint_is_skipped(fk, spin, read_output):
     assert proc.poll() is None
 
 
-def test_service_planar_3r_closed_form_and_errors(fk, spin):
+def test_service_planar_3r_closed_form_and_errors(fk, call):
     proc, node, executor, joints, poses, links = fk
     client = node.create_client(ForwardKinematics, '/fk_node/forward_kinematics')
     rng = np.random.default_rng(41)
     for _ in range(3):
         l1, l2 = rng.uniform(0.5, 5.0, 2)
         q = rng.uniform(-math.pi, math.pi, 3)
-        response = _call(node, executor, spin, client,
+        response = _call(node, executor, call, client,
                          ForwardKinematics.Request(dh=_dh_table(l1, l2), q=q.tolist()))
         assert response.success, response.message
         np.testing.assert_allclose(_matrix(response.pose), _planar_3r(l1, l2, q), atol=1e-9)
 
-    response = _call(node, executor, spin, client, ForwardKinematics.Request(q=[0.0] * 5))
+    response = _call(node, executor, call, client, ForwardKinematics.Request(q=[0.0] * 5))
     assert not response.success and 'shape (6,)' in response.message
-    response = _call(node, executor, spin, client,
+    response = _call(node, executor, call, client,
                      ForwardKinematics.Request(q=[0.0, math.nan, 0.0, 0.0, 0.0, 0.0]))
     assert not response.success and 'finite' in response.message
-    response = _call(node, executor, spin, client,
+    response = _call(node, executor, call, client,
                      ForwardKinematics.Request(robot='kuka', q=[0.0] * 6))
     assert not response.success and "unknown robot 'kuka'" in response.message
     bad = _dh_table(1.0, 1.0)
     bad.links[1].sigma = 7
-    response = _call(node, executor, spin, client,
+    response = _call(node, executor, call, client,
                      ForwardKinematics.Request(dh=bad, q=[0.0] * 3))
     assert not response.success and 'sigma' in response.message
     q = [0.3, -0.2, 0.1]   # named robot, default dimensions l1 = l2 = 1
-    response = _call(node, executor, spin, client,
+    response = _call(node, executor, call, client,
                      ForwardKinematics.Request(robot='planar_rrr', q=q))
     assert response.success
     np.testing.assert_allclose(_matrix(response.pose), _planar_3r(1.0, 1.0, q), atol=1e-9)

@@ -42,18 +42,18 @@ def _planar_3r(l1, l2, q):
 
 
 @pytest.fixture
-def ik(start_node, ros_node, spin):
+def ik(start_node, ros_node, call):
     node, executor = ros_node
     proc = start_node('robotica_kin', 'ik_server')
     client = node.create_client(InverseKinematics, '/ik_server/inverse_kinematics')
     assert client.wait_for_service(timeout_sec=15.0)
 
-    def call(**fields):
-        future = client.call_async(InverseKinematics.Request(**fields))
-        assert spin(executor, future.done, timeout=30.0)
-        return future.result()
+    def request(**fields):
+        response = call(executor, client, InverseKinematics.Request(**fields))
+        assert response is not None, 'no answer from ik_server'
+        return response
 
-    return proc, call
+    return proc, request
 
 
 def test_puma_pose_is_reached(ik):
