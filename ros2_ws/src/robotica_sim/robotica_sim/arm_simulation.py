@@ -1,0 +1,155 @@
+"""
+Manipulator simulation: the forward dynamics (5.88) integrated at a fixed step (book §5.7).
+
+``q'' = ABA(q, q', tau - F(q') - B_u q')`` by Pinocchio's articulated-body algorithm, advanced by
+classical RK4 with the torque held over the step (zero-order hold, as a digital controller
+applies it). ``F`` is the friction of the robot's ``dyn`` table; ``B_u`` an optional unmodelled
+viscous friction per joint [N m s] that the controller's model does not know (the appendix's
+PUMA example adds 0.1 N m s on joint 1). Torques are saturated at ``tau_max``; a joint that
+reaches a limit stops there (its velocity is zeroed if it points outwards).
+
+The state is owned here; time is a step counter times ``step_period`` (no clock is read).
+"""
+
+from dataclasses import dataclass
+import math
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+import pinocchio as pin
+from robotica_kin.dh import DHModel
+from robotica_kin.dynamics import DEFAULT_GRAVITY, friction
+
+__all__ = ['ArmSimulation', 'ArmSimulationParams']
+
+
+@dataclass(frozen=True)
+class ArmSimulationParams:
+    """Settings of :class:`ArmSimulation` (SI units)."""
+
+    step_period: float = 1e-3                       # [s] integration step (1 kHz)
+    gravity: tuple[float, float, float] = DEFAULT_GRAVITY   # [m/s^2] in the base frame {0}
+    tau_max: tuple[float, ...] = ()                 # [N m] per joint; () = no saturation
+    unmodelled_viscous: tuple[float, ...] = ()      # [N m s] per joint; () = none
+    respect_limits: bool = True                     # stop joints at their limits
+
+    def __post_init__(self) -> None:
+        if not (math.isfinite(self.step_period) and 0.0 < self.step_period <= 0.1):
+            raise ValueError(f'step_period must be in (0, 0.1] s, got {self.step_period!r}')
+        if len(self.gravity) != 3 or not all(math.isfinite(g) for g in self.gravity):
+            raise ValueError(f'gravity must be three finite values, got {self.gravity!r}')
+        if any(not (t > 0.0) for t in self.tau_max):
+            raise ValueError(f'tau_max must be > 0 N m per joint, got {self.tau_max!r}')
+        if any(not (math.isfinite(b) and b >= 0.0) for b in self.unmodelled_viscous):
+            raise ValueError('unmodelled_viscous must be finite and >= 0 N m s, got '
+                             f'{self.unmodelled_viscous!r}')
+
+
+class ArmSimulation:
+    """
+    A manipulator integrated at a fixed step with Pinocchio's ABA and RK4.
+
+    Parameters
+    ----------
+    robot : DHModel
+        The plant, with its ``dyn`` table (e.g. ``robotica_kin.robots.puma560()``).
+    params : ArmSimulationParams
+        Step, gravity, saturation and unmodelled friction.
+    q0, qd0 : array_like, shape (n,)
+        Initial joint positions [rad | m] and velocities.
+
+    Examples
+    --------
+    >>> from robotica_kin.dh import dh_model
+    >>> from robotica_kin.robots import two_link_arm
+    >>> dh, dyn = two_link_arm(2.0, 1.0, 3.0, 1.0)
+    >>> sim = ArmSimulation(dh_model(dh, dyn=dyn), ArmSimulationParams(gravity=(0.0, -9.81, 0.0)),
+    ...                     [-np.pi / 2, 0.0], [0.0, 0.0])
+    >>> for _ in range(100):
+    ...     _ = sim.step([0.0, 0.0])       # hanging: an equilibrium
+    >>> sim.time, bool(np.allclose(sim.q, [-np.pi / 2, 0.0]))
+    (0.1, True)
+
+    """
+
+    def __init__(self, robot: DHModel, params: ArmSimulationParams, q0: ArrayLike,
+                 qd0: ArrayLike) -> None:
+        if robot.dyn is None:
+            raise ValueError(f'robot {robot.name!r} has no dyn table: cannot simulate it')
+        n = robot.n
+        for name, values in (('tau_max', params.tau_max),
+                             ('unmodelled_viscous', params.unmodelled_viscous)):
+            if values and len(values) != n:
+                raise ValueError(f'{name} needs {n} values (one per joint), got {len(values)}')
+        self.robot = robot
+        self.params = params
+        self._model = pin.Model(robot.pinocchio_model)
+        self._model.gravity = pin.Motion(np.array(params.gravity), np.zeros(3))
+        self._data = self._model.createData()
+        self._tau_max = np.array(params.tau_max) if params.tau_max else np.full(n, np.inf)
+        self._viscous = (np.array(params.unmodelled_viscous) if params.unmodelled_viscous
+                         else np.zeros(n))
+        self._has_friction = bool(np.any(robot.dyn[:, 17:20] != 0.0))
+        self.reset(q0, qd0)
+
+    def reset(self, q0: ArrayLike, qd0: ArrayLike) -> None:
+        """Set the state to (q0, qd0) at time 0."""
+        q = self.robot.check_q(q0, 'q0')
+        qd = self.robot.check_q(qd0, 'qd0')
+        if q.ndim != 1 or qd.ndim != 1:
+            raise ValueError(f'q0 and qd0 must have shape ({self.robot.n},)')
+        self.q = q.copy()
+        self.qd = qd.copy()
+        self.steps = 0
+        self.applied_torque = np.zeros(self.robot.n)
+
+    @property
+    def time(self) -> float:
+        """Return the simulated time [s]."""
+        return round(self.steps * self.params.step_period, 12)
+
+    def _acceleration(self, q: NDArray[np.float64], qd: NDArray[np.float64],
+                      tau: NDArray[np.float64]) -> NDArray[np.float64]:
+        load = tau - self._viscous * qd
+        if self._has_friction:
+            load = load - friction(self.robot, qd)
+        return pin.aba(self._model, self._data, q, qd, load)
+
+    def step(self, tau: ArrayLike) -> NDArray[np.float64]:
+        """
+        Advance one step with joint torques ``tau`` [N m] (shape (n,)); return the new q.
+
+        Raises
+        ------
+        ValueError
+            For a torque of the wrong size or not finite (the state is left unchanged).
+
+        """
+        torque = np.asarray(tau, dtype=np.float64)
+        if torque.shape != (self.robot.n,) or not np.isfinite(torque).all():
+            raise ValueError(f'tau must be {self.robot.n} finite torques, got {tau!r}')
+        torque = np.clip(torque, -self._tau_max, self._tau_max)
+        h = self.params.step_period
+        q, qd = self.q, self.qd
+        a1 = self._acceleration(q, qd, torque)
+        v2 = qd + 0.5 * h * a1
+        a2 = self._acceleration(q + 0.5 * h * qd, v2, torque)
+        v3 = qd + 0.5 * h * a2
+        a3 = self._acceleration(q + 0.5 * h * v2, v3, torque)
+        v4 = qd + h * a3
+        a4 = self._acceleration(q + h * v3, v4, torque)
+        self.q = q + (h / 6.0) * (qd + 2.0 * v2 + 2.0 * v3 + v4)
+        self.qd = qd + (h / 6.0) * (a1 + 2.0 * a2 + 2.0 * a3 + a4)
+        if self.params.respect_limits:
+            self._stop_at_limits()
+        self.applied_torque = torque
+        self.steps += 1
+        return self.q
+
+    def _stop_at_limits(self) -> None:
+        low, high = self.robot.qlim[:, 0], self.robot.qlim[:, 1]
+        below, above = self.q < low, self.q > high
+        if below.any() or above.any():
+            self.q = np.clip(self.q, low, high)
+            self.qd = np.where((below & (self.qd < 0.0)) | (above & (self.qd > 0.0)), 0.0,
+                               self.qd)
