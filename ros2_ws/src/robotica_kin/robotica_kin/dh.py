@@ -25,7 +25,7 @@ from numpy.typing import ArrayLike, NDArray
 from robotica_kin.transforms import ishomog
 from robotica_kin.types import Vector
 
-__all__ = ['DHModel', 'as_dh_model', 'dh_model', 'linktrans']
+__all__ = ['DHModel', 'as_dh_model', 'as_dyn_model', 'dh_model', 'linktrans']
 
 _DEFAULT_REVOLUTE_LIMIT = math.pi
 _DEFAULT_PRISMATIC_LIMIT = 1.0
@@ -215,8 +215,9 @@ def dh_model(dh: ArrayLike, *, name: str = 'robot', qlim: ArrayLike | None = Non
 
 
 @functools.lru_cache(maxsize=32)
-def _cached_model(shape: tuple[int, ...], data: bytes) -> DHModel:
-    return dh_model(np.frombuffer(data, dtype=np.float64).reshape(shape))
+def _cached_model(shape: tuple[int, ...], data: bytes, with_dyn: bool) -> DHModel:
+    table = np.frombuffer(data, dtype=np.float64).reshape(shape)
+    return dh_model(table[:, :5], dyn=table) if with_dyn else dh_model(table)
 
 
 def as_dh_model(dh: DHModel | ArrayLike) -> DHModel:
@@ -229,7 +230,26 @@ def as_dh_model(dh: DHModel | ArrayLike) -> DHModel:
     if isinstance(dh, DHModel):
         return dh
     table = np.ascontiguousarray(dh, dtype=np.float64)
-    return _cached_model(table.shape, table.tobytes())
+    return _cached_model(table.shape, table.tobytes(), False)
+
+
+def as_dyn_model(dyn: DHModel | ArrayLike) -> DHModel:
+    """
+    Return ``dyn`` as a :class:`DHModel` that has dynamic parameters, or raise ValueError.
+
+    A :class:`DHModel` must carry a ``dyn`` table; a raw HEMERO ``dyn`` table (n, 20) (book
+    §A.3, its first five columns the DH table) is validated and cached like
+    :func:`as_dh_model`'s tables.
+    """
+    if isinstance(dyn, DHModel):
+        if dyn.dyn is None:
+            raise ValueError(f'robot {dyn.name!r} has no dyn table (dynamic parameters)')
+        return dyn
+    table = np.ascontiguousarray(dyn, dtype=np.float64)
+    if table.ndim != 2 or table.shape[1] != 20 or table.shape[0] == 0:
+        raise ValueError(f'dyn must be a DHModel with dynamics or an (n, 20) HEMERO table, got '
+                         f'shape {table.shape}')
+    return _cached_model(table.shape, table.tobytes(), True)
 
 
 @overload

@@ -21,39 +21,33 @@ method of MATLAB's ``ode45``).
 """
 
 from dataclasses import dataclass
-import functools
 from typing import Any, Callable
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 import pinocchio as pin
-from robotica_kin.dh import dh_model, DHModel
+from robotica_kin.dh import as_dyn_model, DHModel
 from scipy.integrate import solve_ivp
 
 __all__ = ['DEFAULT_GRAVITY', 'FdynResult', 'coriolis', 'coriolis_matrix', 'fdyn', 'friction',
-           'gravity', 'inertia', 'rne']
+           'gravity', 'inertia', 'rne', 'set_gravity']
 
 DEFAULT_GRAVITY = (0.0, 0.0, -9.81)
 """Gravity acceleration in the base frame {0} [m/s²] when ``grav`` is not given."""
 
 
-@functools.lru_cache(maxsize=16)
-def _cached_dyn_model(shape: tuple[int, ...], data: bytes) -> DHModel:
-    table = np.frombuffer(data, dtype=np.float64).reshape(shape)
-    return dh_model(table[:, :5], dyn=table)
+def set_gravity(model: Any, grav: ArrayLike | None) -> None:
+    """
+    Set the gravity of a Pinocchio ``model`` to ``grav`` [m/s²] in frame {0}.
 
-
-def _robot(dyn: DHModel | ArrayLike) -> DHModel:
-    """Return a DHModel with a dyn table, or raise ValueError."""
-    if isinstance(dyn, DHModel):
-        if dyn.dyn is None:
-            raise ValueError(f'robot {dyn.name!r} has no dyn table (dynamic parameters)')
-        return dyn
-    table = np.ascontiguousarray(dyn, dtype=np.float64)
-    if table.ndim != 2 or table.shape[1] != 20 or table.shape[0] == 0:
-        raise ValueError(f'dyn must be a DHModel with dynamics or an (n, 20) HEMERO table, got '
-                         f'shape {table.shape}')
-    return _cached_dyn_model(table.shape, table.tobytes())
+    ``None`` means :data:`DEFAULT_GRAVITY`; anything but three finite values raises ValueError.
+    Use it on a copy (``pinocchio.Model(robot.pinocchio_model)``): the robot's own model is
+    shared.
+    """
+    g = np.asarray(DEFAULT_GRAVITY if grav is None else grav, dtype=np.float64)
+    if g.shape != (3,) or not np.isfinite(g).all():
+        raise ValueError(f'grav must be a finite 3-vector [m/s^2] in frame {{0}}, got {grav!r}')
+    model.gravity = pin.Motion(g, np.zeros(3))
 
 
 def _model_and_data(robot: DHModel, grav: ArrayLike | None) -> tuple[Any, Any]:
@@ -64,10 +58,7 @@ def _model_and_data(robot: DHModel, grav: ArrayLike | None) -> tuple[Any, Any]:
         model = pin.Model(robot.pinocchio_model)
         scratch.dynamics_model = model
         scratch.dynamics_data = model.createData()
-    g = np.asarray(DEFAULT_GRAVITY if grav is None else grav, dtype=np.float64)
-    if g.shape != (3,) or not np.isfinite(g).all():
-        raise ValueError(f'grav must be a finite 3-vector [m/s^2] in frame {{0}}, got {grav!r}')
-    model.gravity = pin.Motion(g, np.zeros(3))
+    set_gravity(model, grav)
     return model, scratch.dynamics_data
 
 
@@ -100,7 +91,7 @@ def friction(dyn: DHModel | ArrayLike, qd: ArrayLike) -> NDArray[np.float64]:
     (array([6.2]), array([-6.2]))
 
     """
-    robot = _robot(dyn)
+    robot = as_dyn_model(dyn)
     (v,) = _vectors(robot, qd=qd)
     table = robot.dyn
     assert table is not None
@@ -143,7 +134,7 @@ def rne(dyn: DHModel | ArrayLike, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike,
     array([98.1 ,  9.81])
 
     """
-    robot = _robot(dyn)
+    robot = as_dyn_model(dyn)
     qq, vv, aa = _vectors(robot, q=q, qd=qd, qdd=qdd)
     model, data = _model_and_data(robot, grav)
     tau = np.array([pin.rnea(model, data, qq[k], vv[k], aa[k]) for k in range(qq.shape[0])])
@@ -166,7 +157,7 @@ def inertia(dyn: DHModel | ArrayLike, q: ArrayLike) -> NDArray[np.float64]:
            [ 4.,  1.]])
 
     """
-    robot = _robot(dyn)
+    robot = as_dyn_model(dyn)
     (qq,) = _vectors(robot, q=q)
     model, data = _model_and_data(robot, None)
     out = np.empty((qq.shape[0], robot.n, robot.n))
@@ -191,7 +182,7 @@ def gravity(dyn: DHModel | ArrayLike, q: ArrayLike,
     array([98.1 ,  9.81])
 
     """
-    robot = _robot(dyn)
+    robot = as_dyn_model(dyn)
     (qq,) = _vectors(robot, q=q)
     model, data = _model_and_data(robot, grav)
     return _single(np.array([pin.computeGeneralizedGravity(model, data, qk) for qk in qq]), q)
@@ -211,7 +202,7 @@ def coriolis(dyn: DHModel | ArrayLike, q: ArrayLike, qd: ArrayLike) -> NDArray[n
     array([-0.,  3.])
 
     """
-    robot = _robot(dyn)
+    robot = as_dyn_model(dyn)
     qq, vv = _vectors(robot, q=q, qd=qd)
     model, data = _model_and_data(robot, [0.0, 0.0, 0.0])
     return _single(np.array([pin.nonLinearEffects(model, data, qq[k], vv[k])
@@ -225,7 +216,7 @@ def coriolis_matrix(dyn: DHModel | ArrayLike, q: ArrayLike,
 
     Pinocchio's ``computeCoriolisMatrix``; q and qd of shape (n,).
     """
-    robot = _robot(dyn)
+    robot = as_dyn_model(dyn)
     qq, vv = _vectors(robot, q=q, qd=qd)
     if qq.shape[0] != 1 or np.ndim(q) != 1:
         raise ValueError('coriolis_matrix takes one configuration, q of shape (n,)')
@@ -280,7 +271,7 @@ def fdyn(dyn: DHModel | ArrayLike, t0: float, tf: float,
         For bad sizes, NaN, tf <= t0, or a torque function that returns a wrong size or NaN.
 
     """
-    robot = _robot(dyn)
+    robot = as_dyn_model(dyn)
     start, speed = _vectors(robot, q0=q0, qd0=qd0)
     if start.shape[0] != 1 or np.ndim(q0) != 1:
         raise ValueError(f'q0 and qd0 must have shape ({robot.n},)')

@@ -34,6 +34,7 @@ from numpy.typing import ArrayLike, NDArray
 import pinocchio as pin
 from robotica_kin.dh import as_dh_model, DHModel
 from robotica_kin.forward_kinematics import link_frames
+from robotica_kin.pinocchio_model import TOOL_FRAME
 from scipy.linalg import lapack
 
 __all__ = ['IKError', 'IKResult', 'ikine', 'ikine_solve']
@@ -112,7 +113,7 @@ def _robot_solver(robot: DHModel) -> _RobotSolver:
     return _RobotSolver(robot=robot, model=model, n=robot.n, lower=robot.qlim[:, 0],
                         upper=robot.qlim[:, 1], revolute=~robot.prismatic,
                         tool_inverse=robot.tool_se3.inverse() if has_tool else None,
-                        tool_frame=model.getFrameId('tool0'))
+                        tool_frame=model.getFrameId(TOOL_FRAME))
 
 
 @dataclass(frozen=True)
@@ -209,35 +210,33 @@ class _Solver:
         self.seed_count = seed_count
         self.newton = rows is None and robot.n == 6
 
+    def _pose_error(self, pose: Any, p_d: NDArray[np.float64],
+                    R_d: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Return the masked base-frame error ``[p_d - p; log(R_d R^T)]`` of a tool ``pose``."""
+        e = np.concatenate((p_d - pose.translation, pin.log3(R_d.dot(pose.rotation.T))))
+        return e if self.rows is None else e[self.rows]
+
     def _world_error(self, q: NDArray[np.float64], p_d: NDArray[np.float64],
                      R_d: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """Return the masked base-frame pose error at q and the matching rows of jacob0."""
         c, data = self.c, self.data
         pin.computeJointJacobians(c.model, data, q)
         pin.updateFramePlacement(c.model, data, c.tool_frame)
-        pose = data.oMf[c.tool_frame]
         J = pin.getFrameJacobian(c.model, data, c.tool_frame, pin.LOCAL_WORLD_ALIGNED)
-        e = np.concatenate((p_d - pose.translation, pin.log3(R_d.dot(pose.rotation.T))))
-        if self.rows is not None:
-            return e[self.rows], J[self.rows]
-        return e, J
+        e = self._pose_error(data.oMf[c.tool_frame], p_d, R_d)
+        return e, (J if self.rows is None else J[self.rows])
 
-    def _residual(self, p_d: NDArray[np.float64], R_d: NDArray[np.float64],
-                  local: bool) -> float:
+    def _local_residual(self, p_d: NDArray[np.float64], R_d: NDArray[np.float64]) -> float:
         """
-        Return the masked base-frame pose error [m, rad] at the last evaluated q.
+        Return the masked base-frame pose error [m, rad] after :meth:`_search_local`'s step.
 
-        ``local``: the last evaluation was :meth:`_search_local`'s, which leaves the pose of {n}
-        in ``data.iMf[0]``; else :meth:`_world_error`'s (``data.oMf``).
+        That step leaves the pose of frame {n} in ``data.iMf[0]``.
         """
-        c, data = self.c, self.data
-        if local:
-            pose = data.iMf[0] if c.tool_inverse is None else data.iMf[0] * c.robot.tool_se3
-        else:
-            pose = data.oMf[c.tool_frame]
-        e = np.concatenate((p_d - pose.translation, pin.log3(R_d.dot(pose.rotation.T))))
-        if self.rows is not None:
-            e = e[self.rows]
+        c = self.c
+        pose = self.data.iMf[0]
+        if c.tool_inverse is not None:
+            pose = pose * c.robot.tool_se3
+        e = self._pose_error(pose, p_d, R_d)
         return math.sqrt(e.dot(e))
 
     def _fit_limits(self, q: NDArray[np.float64]) -> NDArray[np.float64] | None:
@@ -293,8 +292,8 @@ class _Solver:
                     return fitted, True, iterations, residual
             if iterations >= ilimit:
                 break
-        self._world_error(q, p_d, R_d)
-        return q, False, iterations, self._residual(p_d, R_d, local=False)
+        e, _ = self._world_error(q, p_d, R_d)
+        return q, False, iterations, math.sqrt(e.dot(e))
 
     def _search_local(self, q: NDArray[np.float64], goal_n: Any, p_d: NDArray[np.float64],
                       R_d: NDArray[np.float64],
@@ -310,7 +309,7 @@ class _Solver:
             e = log6(data.iMf[0].actInv(goal_n)).vector
             err_sq = e.dot(e)
             if err_sq < tol_sq:
-                residual = self._residual(p_d, R_d, True)
+                residual = self._local_residual(p_d, R_d)
                 if residual < self.stol:
                     return q, k, residual
             if k == limit:

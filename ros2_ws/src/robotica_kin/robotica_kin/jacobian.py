@@ -34,11 +34,9 @@ from numpy.typing import ArrayLike, NDArray
 import pinocchio as pin
 
 from robotica_kin.dh import as_dh_model, DHModel
+from robotica_kin.pinocchio_model import TOOL_FRAME
 
 __all__ = ['jacob0', 'jacobn', 'manipulability']
-
-TOOL_FRAME = 'tool0'
-"""Name of the tool frame in the Pinocchio model (:mod:`robotica_kin.pinocchio_model`)."""
 
 
 @functools.lru_cache(maxsize=64)

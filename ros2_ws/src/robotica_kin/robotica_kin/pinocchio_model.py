@@ -17,9 +17,12 @@ import numpy as np
 from numpy.typing import ArrayLike
 import pinocchio as pin
 
-from robotica_kin.dh import as_dh_model, DHModel
+from robotica_kin.dh import as_dh_model, dh_model, DHModel
 
-__all__ = ['build_model']
+__all__ = ['TOOL_FRAME', 'build_model']
+
+TOOL_FRAME = 'tool0'
+"""Name of the tool frame (``DHModel.tool`` on link n), the frame of fkine and the Jacobians."""
 
 
 def _link_inertia(row: np.ndarray) -> Any:
@@ -66,7 +69,6 @@ def build_model(dh: DHModel | ArrayLike, dyn: ArrayLike | None = None) -> Any:
     """
     robot = as_dh_model(dh)
     if dyn is not None:
-        from robotica_kin.dh import dh_model
         robot = dh_model(robot.table, name=robot.name, qlim=robot.qlim,
                          joint_names=robot.joint_names, dyn=dyn, tool=robot.tool)
     model = pin.Model()
@@ -97,6 +99,6 @@ def build_model(dh: DHModel | ArrayLike, dyn: ArrayLike | None = None) -> Any:
             model.rotorGearRatio[i] = gear_ratio
         model.addFrame(pin.Frame(f'link_{i + 1}', parent, model.getFrameId(f'link_{i}'),
                                  pin.SE3.Identity(), pin.FrameType.OP_FRAME))
-    model.addFrame(pin.Frame('tool0', parent, model.getFrameId(f'link_{robot.n}'),
+    model.addFrame(pin.Frame(TOOL_FRAME, parent, model.getFrameId(f'link_{robot.n}'),
                              pin.SE3(np.array(robot.tool)), pin.FrameType.OP_FRAME))
     return model

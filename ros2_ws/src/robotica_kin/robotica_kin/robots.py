@@ -15,6 +15,7 @@ import math
 import numpy as np
 
 from robotica_kin.dh import dh_model, DHModel
+from robotica_kin.transforms import transl
 
 __all__ = ['ROBOT_NAMES', 'cylindrical_rpr', 'planar_rr', 'planar_rrr', 'puma560', 'robot_by_name',
            'two_link_arm']
@@ -93,7 +94,7 @@ def planar_rr(l1: float = 1.0, l2: float = 1.0) -> DHModel:
     """
     _check_lengths(l1=l1, l2=l2)
     return dh_model([[0.0, 0.0, 0.0, 0.0, 0.0], [0.0, l1, 0.0, 0.0, 0.0]], name='planar_rr',
-                    qlim=[[-math.pi, math.pi]] * 2, tool=_transl_x(l2))
+                    qlim=[[-math.pi, math.pi]] * 2, tool=transl(l2, 0.0, 0.0))
 
 
 def planar_rrr(l1: float = 1.0, l2: float = 1.0, l3: float = 0.0) -> DHModel:
@@ -115,7 +116,7 @@ def planar_rrr(l1: float = 1.0, l2: float = 1.0, l3: float = 0.0) -> DHModel:
         raise ValueError(f'l3 must be a finite length >= 0 m, got {l3!r}')
     return dh_model([[0.0, 0.0, 0.0, 0.0, 0.0], [0.0, l1, 0.0, 0.0, 0.0],
                      [0.0, l2, 0.0, 0.0, 0.0]], name='planar_rrr',
-                    qlim=[[-math.pi, math.pi]] * 3, tool=_transl_x(l3))
+                    qlim=[[-math.pi, math.pi]] * 3, tool=transl(l3, 0.0, 0.0))
 
 
 def cylindrical_rpr(l2: float = 0.2, d2_max: float = 1.0) -> DHModel:
@@ -190,9 +191,3 @@ def robot_by_name(name: str) -> DHModel:
     if name not in factories:
         raise ValueError(f'unknown robot {name!r}; known robots: {", ".join(ROBOT_NAMES)}')
     return factories[name]()
-
-
-def _transl_x(length: float) -> np.ndarray:
-    tool = np.eye(4)
-    tool[0, 3] = length
-    return tool

@@ -17,8 +17,8 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 import pinocchio as pin
-from robotica_kin.dh import DHModel
-from robotica_kin.dynamics import DEFAULT_GRAVITY, friction
+from robotica_kin.dh import as_dyn_model, DHModel
+from robotica_kin.dynamics import DEFAULT_GRAVITY, friction, set_gravity
 
 __all__ = ['ArmSimulation', 'ArmSimulationParams']
 
@@ -74,8 +74,7 @@ class ArmSimulation:
 
     def __init__(self, robot: DHModel, params: ArmSimulationParams, q0: ArrayLike,
                  qd0: ArrayLike) -> None:
-        if robot.dyn is None:
-            raise ValueError(f'robot {robot.name!r} has no dyn table: cannot simulate it')
+        robot = as_dyn_model(robot)
         n = robot.n
         for name, values in (('tau_max', params.tau_max),
                              ('unmodelled_viscous', params.unmodelled_viscous)):
@@ -84,12 +83,13 @@ class ArmSimulation:
         self.robot = robot
         self.params = params
         self._model = pin.Model(robot.pinocchio_model)
-        self._model.gravity = pin.Motion(np.array(params.gravity), np.zeros(3))
+        set_gravity(self._model, params.gravity)
         self._data = self._model.createData()
         self._tau_max = np.array(params.tau_max) if params.tau_max else np.full(n, np.inf)
         self._viscous = (np.array(params.unmodelled_viscous) if params.unmodelled_viscous
                          else np.zeros(n))
-        self._has_friction = bool(np.any(robot.dyn[:, 17:20] != 0.0))
+        table = robot.dyn     # never None after as_dyn_model
+        self._has_friction = table is not None and bool(np.any(table[:, 17:20] != 0.0))
         self.reset(q0, qd0)
 
     def reset(self, q0: ArrayLike, qd0: ArrayLike) -> None:
