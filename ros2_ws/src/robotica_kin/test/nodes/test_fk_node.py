@@ -22,6 +22,10 @@ from sensor_msgs.msg import JointState
 
 pytestmark = pytest.mark.ros
 QOS = QoSProfile(depth=10, reliability=ReliabilityPolicy.RELIABLE)
+# fk_node's streams keep a transient-local history (nodes/qos.py) so that a reader matched a
+# little after the first message still gets it; the test's readers ask for it too.
+STREAM = QoSProfile(depth=10, reliability=ReliabilityPolicy.RELIABLE,
+                    durability=DurabilityPolicy.TRANSIENT_LOCAL)
 LATCHED = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,
                      durability=DurabilityPolicy.TRANSIENT_LOCAL)
 PUMA_JOINTS = [f'joint_{i}' for i in range(1, 7)]
@@ -68,8 +72,8 @@ def fk(start_node, ros_node, spin):
     node, executor = ros_node
     proc = start_node('robotica_kin', 'fk_node')
     poses, links = [], []
-    node.create_subscription(PoseStamped, '/fk_node/end_effector_pose', poses.append, QOS)
-    node.create_subscription(PoseArray, '/fk_node/link_poses', links.append, QOS)
+    node.create_subscription(PoseStamped, '/fk_node/end_effector_pose', poses.append, STREAM)
+    node.create_subscription(PoseArray, '/fk_node/link_poses', links.append, STREAM)
     joints = node.create_publisher(JointState, 'joint_states', QOS)
     assert spin(executor, lambda: joints.get_subscription_count() > 0 and
                 node.count_publishers('/fk_node/end_effector_pose') > 0 and
@@ -160,7 +164,7 @@ def test_dh_table_parameter_and_joint_names(start_node, ros_node, spin):
                       '0.0, 3.0, 0.0, 0.0, 0.0]', '-p', 'joint_names:=[a, b, c]',
                       '-p', 'base_frame_id:=arm_base')
     poses = []
-    node.create_subscription(PoseStamped, '/fk_node/end_effector_pose', poses.append, QOS)
+    node.create_subscription(PoseStamped, '/fk_node/end_effector_pose', poses.append, STREAM)
     joints = node.create_publisher(JointState, 'joint_states', QOS)
     assert spin(executor, lambda: joints.get_subscription_count() > 0 and
                 node.count_publishers('/fk_node/end_effector_pose') > 0)
