@@ -57,6 +57,29 @@ def spin():
     return spin_until
 
 
+def publish_until(executor, publisher, msg, predicate, period: float = 0.25,
+                  timeout: float = 15.0) -> bool:
+    """
+    Publish ``msg`` every ``period`` [s] until ``predicate()`` is true or ``timeout`` [s] passes.
+
+    Graph discovery (``get_subscription_count``) can report a match before the node's own
+    output writer has matched the test's reader, so the answer to a single message may go
+    nowhere; for a node that answers each input with an output, resending is the way to wait.
+    """
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        publisher.publish(msg)
+        if spin_until(executor, predicate, min(period, deadline - time.monotonic())):
+            return True
+    return predicate()
+
+
+@pytest.fixture
+def publish():
+    """Return :func:`publish_until`."""
+    return publish_until
+
+
 def call_service(executor, client, request, attempts: int = 3, timeout: float = 10.0):
     """
     Call a service and return its response, sending the request again if no answer comes.

@@ -54,50 +54,47 @@ def tracker(start_node, ros_node, spin):
     return proc, node, executor, odom, path, cmds, errors
 
 
-def test_no_path_means_stop(tracker, spin, read_output):
+def test_no_path_means_stop(tracker, publish, read_output):
     proc, node, executor, odom, path, cmds, errors = tracker
-    odom.publish(_odom(0.0, 0.5, 0.0))
-    assert spin(executor, lambda: cmds)
+    assert publish(executor, odom, _odom(0.0, 0.5, 0.0), lambda: cmds)
     assert cmds[-1].linear.x == 0.0 and cmds[-1].angular.z == 0.0
     assert 'no path' in read_output(proc)
 
 
-def test_turns_towards_the_path(tracker, spin):
+def test_turns_towards_the_path(tracker, publish, spin):
     proc, node, executor, odom, path, cmds, errors = tracker
     path.publish(_straight_path())
-    spin(executor, lambda: False, timeout=0.3)
-    odom.publish(_odom(0.0, 0.5, 0.0))
-    assert spin(executor, lambda: errors)
+    assert publish(executor, odom, _odom(0.0, 0.5, 0.0), lambda: errors)
     assert errors[-1].cross_track == pytest.approx(0.5, abs=1e-9)
     assert errors[-1].heading == pytest.approx(0.0, abs=1e-9)
+    assert spin(executor, lambda: cmds and cmds[-1].linear.x != 0.0)   # after any 'no path' stop
     assert cmds[-1].linear.x > 0.0
     assert cmds[-1].angular.z < 0.0
 
 
-def test_nan_pose_and_wrong_frame_stop(tracker, spin, read_output):
+def test_nan_pose_and_wrong_frame_stop(tracker, publish, read_output):
     proc, node, executor, odom, path, cmds, errors = tracker
     path.publish(_straight_path())
-    spin(executor, lambda: False, timeout=0.3)
-    odom.publish(_odom(math.nan, 0.5, 0.0))
-    assert spin(executor, lambda: cmds)
-    assert (cmds[-1].linear.x, cmds[-1].angular.z) == (0.0, 0.0)
-    odom.publish(_odom(0.0, 0.5, 0.0, frame='map'))
-    assert spin(executor, lambda: len(cmds) >= 2)
-    assert (cmds[-1].linear.x, cmds[-1].angular.z) == (0.0, 0.0)
+    assert publish(executor, odom, _odom(0.0, 0.5, 0.0), lambda: errors)   # path received
+
+    def stopped_since(count):
+        return lambda: len(cmds) > count and (cmds[-1].linear.x, cmds[-1].angular.z) == (0, 0)
+
+    assert publish(executor, odom, _odom(math.nan, 0.5, 0.0), stopped_since(len(cmds)))
+    assert publish(executor, odom, _odom(0.0, 0.5, 0.0, frame='map'), stopped_since(len(cmds)))
     assert proc.poll() is None
     text = read_output(proc)
     assert 'pose refused' in text and 'differs from path frame' in text
 
 
-def test_invalid_gain_is_refused_with_reason(tracker, spin):
+def test_invalid_gain_is_refused_with_reason(tracker, call):
     proc, node, executor, odom, path, cmds, errors = tracker
     client = node.create_client(SetParameters, '/path_tracker/set_parameters')
-    assert client.wait_for_service(timeout_sec=15.0)
     value = ParameterValue(type=ParameterType.PARAMETER_DOUBLE, double_value=5.0)
     request = SetParameters.Request(parameters=[
         Parameter(name='pure_pursuit.min_approach_velocity', value=value)])
-    future = client.call_async(request)
-    assert spin(executor, future.done)
-    result = future.result().results[0]
+    response = call(executor, client, request)
+    assert response is not None
+    result = response.results[0]
     assert not result.successful
     assert 'min_approach_velocity' in result.reason

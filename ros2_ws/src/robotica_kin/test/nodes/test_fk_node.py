@@ -87,7 +87,7 @@ def _call(node, executor, call, client, request):
     return response
 
 
-def test_end_effector_pose_and_link_frames(fk, spin):
+def test_end_effector_pose_and_link_frames(fk, publish):
     proc, node, executor, joints, poses, links = fk
     table = puma560().table
     rng = np.random.default_rng(560)
@@ -99,26 +99,25 @@ def test_end_effector_pose_and_link_frames(fk, spin):
              (_joint_state(PUMA_JOINTS, q_random, sec=2), q_random),
              (shuffled, q_random)]
     for k, (msg, q) in enumerate(cases):
-        joints.publish(msg)
-        assert spin(executor, lambda: len(poses) > k and len(links) > k)
+        assert publish(executor, joints, msg, lambda: poses and links and
+                       poses[-1].header.stamp.sec == links[-1].header.stamp.sec == k + 1)
         expected = _chain(table, q)
-        assert poses[k].header.stamp == Time(sec=k + 1, nanosec=123)
-        assert poses[k].header.frame_id == 'link_0'
-        np.testing.assert_allclose(_matrix(poses[k].pose), expected[-1], atol=1e-9)
-        assert len(links[k].poses) == 6 + 2
-        assert links[k].header == poses[k].header
-        for pose, T in zip(links[k].poses, expected + [expected[-1]]):
+        assert poses[-1].header.stamp == Time(sec=k + 1, nanosec=123)
+        assert poses[-1].header.frame_id == 'link_0'
+        np.testing.assert_allclose(_matrix(poses[-1].pose), expected[-1], atol=1e-9)
+        assert len(links[-1].poses) == 6 + 2
+        assert links[-1].header == poses[-1].header
+        for pose, T in zip(links[-1].poses, expected + [expected[-1]]):
             np.testing.assert_allclose(_matrix(pose), T, atol=1e-9)
 
 
-def test_missing_or_nan_joint_is_skipped(fk, spin, read_output):
+def test_missing_or_nan_joint_is_skipped(fk, spin, publish, read_output):
     proc, node, executor, joints, poses, links = fk
     joints.publish(_joint_state(PUMA_JOINTS[:5], np.zeros(5), sec=1))
     joints.publish(_joint_state(PUMA_JOINTS, [0.0, math.nan, 0.0, 0.0, 0.0, 0.0], sec=2))
-    joints.publish(_joint_state(PUMA_JOINTS, np.zeros(6), sec=3))
-    assert spin(executor, lambda: poses)
-    spin(executor, lambda: len(poses) > 1, timeout=0.5)
-    assert [p.header.stamp.sec for p in poses] == [3]   # reliable, in order: 1 and 2 dropped
+    assert publish(executor, joints, _joint_state(PUMA_JOINTS, np.zeros(6), sec=3), lambda: poses)
+    spin(executor, lambda: False, timeout=0.5)
+    assert {p.header.stamp.sec for p in poses} == {3}   # 1 and 2 dropped
     text = read_output(proc)
     assert "lacks positions of ['joint_6']" in text and 'non-finite joint position' in text
     assert proc.poll() is None
@@ -157,7 +156,7 @@ def test_service_planar_3r_closed_form_and_errors(fk, call):
     assert proc.poll() is None
 
 
-def test_dh_table_parameter_and_joint_names(start_node, ros_node, spin):
+def test_dh_table_parameter_and_joint_names(start_node, ros_node, spin, publish):
     node, executor = ros_node
     proc = start_node('robotica_kin', 'fk_node', '-p', "robot:=''",
                       '-p', 'dh_table:=[0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 4.0, 0.0, 0.0, 0.0, '
@@ -169,8 +168,8 @@ def test_dh_table_parameter_and_joint_names(start_node, ros_node, spin):
     assert spin(executor, lambda: joints.get_subscription_count() > 0 and
                 node.count_publishers('/fk_node/end_effector_pose') > 0)
     q = [0.4, -1.1, 0.7]
-    joints.publish(_joint_state(['c', 'a', 'b'], [q[2], q[0], q[1]]))
-    assert spin(executor, lambda: poses)
+    assert publish(executor, joints, _joint_state(['c', 'a', 'b'], [q[2], q[0], q[1]]),
+                   lambda: poses)
     assert poses[0].header.frame_id == 'arm_base'
     np.testing.assert_allclose(_matrix(poses[0].pose), _planar_3r(4.0, 3.0, q), atol=1e-9)
     proc.send_signal(signal.SIGINT)
