@@ -1,7 +1,7 @@
 """
 Tests of robotica_kin.ik: HEMERO's ikine on a damped least-squares solver (catalog §2.3, §12.2).
 
-Every solution is checked through the forward kinematics, computed here independently as a
+Every solution is checked through the forward kinematics, computed independently as a
 NumPy product of Craig's link transforms (4.5), never through the solver's own error measure.
 """
 import math
@@ -9,28 +9,12 @@ import math
 import numpy as np
 import pytest
 
+from reference_models import fk_by_link_product
 from robotica_kin.dh import dh_model
 from robotica_kin.ik import IKError, ikine, ikine_solve
 from robotica_kin.robots import cylindrical_rpr, planar_rr, planar_rrr, puma560
 
 PLANAR_MASK = [1, 1, 0, 0, 0, 1]
-
-
-def _link(alpha, a, theta, d):
-    ca, sa, ct, st = math.cos(alpha), math.sin(alpha), math.cos(theta), math.sin(theta)
-    return np.array([[ct, -st, 0, a], [st * ca, ct * ca, -sa, -sa * d],
-                     [st * sa, ct * sa, ca, ca * d], [0, 0, 0, 1]])
-
-
-def _fk(robot, q):
-    """Tool pose by the product of (4.5) link transforms, independent of the library."""
-    T = np.eye(4)
-    for i, qi in enumerate(q):
-        if robot.prismatic[i]:
-            T = T @ _link(robot.alpha[i], robot.a[i], robot.theta[i], qi)
-        else:
-            T = T @ _link(robot.alpha[i], robot.a[i], qi, robot.d[i])
-    return T @ robot.tool
 
 
 def _pose_error(T, goal):
@@ -43,7 +27,7 @@ def _pose_error(T, goal):
 def _random_goals(robot, count, seed):
     rng = np.random.default_rng(seed)
     q = rng.uniform(robot.qlim[:, 0], robot.qlim[:, 1], size=(count, robot.n))
-    return q, np.array([_fk(robot, qi) for qi in q])
+    return q, np.array([fk_by_link_product(robot, qi) for qi in q])
 
 
 def test_puma560_random_reachable_poses_success_rate_and_accuracy():
@@ -56,14 +40,14 @@ def test_puma560_random_reachable_poses_success_rate_and_accuracy():
         if result.success:
             solved += 1
             assert robot.within_limits(result.q)
-            assert _pose_error(_fk(robot, result.q), goal) < 1e-6
+            assert _pose_error(fk_by_link_product(robot, result.q), goal) < 1e-6
             assert result.residual < 1e-6
     assert solved / len(goals) >= 0.995
 
 
 def test_puma560_home_pose_from_its_own_pose():
     robot = puma560()
-    goal = _fk(robot, np.zeros(6))
+    goal = fk_by_link_product(robot, np.zeros(6))
     # Home pose (catalog §12.4, dhp560): wrist centre at (a2 + a3, d2 + d3, -d4)... checked
     # through the independent product of link transforms rather than by a stored number.
     q = ikine(robot, goal, q0=np.zeros(6))
@@ -106,7 +90,7 @@ def test_trajectory_is_warm_started_from_the_previous_point():
     t = np.linspace(0.0, 1.0, 25)
     q_path = np.column_stack([0.3 * t, -0.8 + 0.2 * t, 0.9 - 0.1 * t, 0.2 + 0 * t, 0.7 * t + 0.3,
                               0.1 * t])
-    goals = np.array([_fk(robot, qi) for qi in q_path])
+    goals = np.array([fk_by_link_product(robot, qi) for qi in q_path])
     result = ikine_solve(robot, goals, q0=q_path[0])
     assert result.success.all()
     np.testing.assert_allclose(result.q, q_path, atol=1e-6)
@@ -152,7 +136,7 @@ def test_tool_frame_and_position_mask_on_planar_rr():
     T = np.eye(4)
     T[0, 3], T[1, 3] = 2.0, 5.0
     q = ikine(robot, T, mask=[1, 1, 0, 0, 0, 0])
-    tip = _fk(robot, q)[:3, 3]
+    tip = fk_by_link_product(robot, q)[:3, 3]
     np.testing.assert_allclose(tip, [2.0, 5.0, 0.0], atol=1e-6)
 
 
@@ -165,17 +149,17 @@ def test_six_dof_robot_with_a_tool():
     for goal in goals:
         result = ikine_solve(robot, goal)
         assert result.success
-        assert _pose_error(_fk(robot, result.q), goal) < 1e-6
+        assert _pose_error(fk_by_link_product(robot, result.q), goal) < 1e-6
 
 
 def test_prismatic_joint_within_its_limits():
     robot = cylindrical_rpr(0.3, d2_max=1.0)
     q_true = np.array([0.7, 0.45, -0.2])
-    goal = _fk(robot, q_true)
+    goal = fk_by_link_product(robot, q_true)
     result = ikine_solve(robot, goal, mask=[1, 1, 1, 0, 0, 0])
     assert result.success
     assert 0.0 <= result.q[1] <= 1.0
-    np.testing.assert_allclose(_fk(robot, result.q)[:3, 3], goal[:3, 3], atol=1e-6)
+    np.testing.assert_allclose(fk_by_link_product(robot, result.q)[:3, 3], goal[:3, 3], atol=1e-6)
 
 
 def test_results_are_deterministic():

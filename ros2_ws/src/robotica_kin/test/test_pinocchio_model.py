@@ -4,21 +4,15 @@ Tests of robotica_kin.pinocchio_model: Pinocchio models from modified-DH tables 
 The joint frames of the model must be Craig's link frames (compared with a NumPy product of
 (4.4) matrices), and the ``dyn`` columns must land in the right inertias.
 """
-import math
 
 import numpy as np
 import pinocchio as pin
 import pytest
 
+from reference_models import link_transform
 from robotica_kin.dh import dh_model
 from robotica_kin.pinocchio_model import build_model
 from robotica_kin.robots import puma560
-
-
-def _link(alpha, a, theta, d):
-    ca, sa, ct, st = math.cos(alpha), math.sin(alpha), math.cos(theta), math.sin(theta)
-    return np.array([[ct, -st, 0, a], [st * ca, ct * ca, -sa, -sa * d],
-                     [st * sa, ct * sa, ca, ca * d], [0, 0, 0, 1]])
 
 
 @pytest.mark.parametrize('seed', range(4))
@@ -33,7 +27,7 @@ def test_joint_frames_are_craig_link_frames(seed):
     T = np.eye(4)
     for i, row in enumerate(table):
         theta, d = (row[2], q[i]) if row[4] else (q[i], row[3])
-        T = T @ _link(row[0], row[1], theta, d)
+        T = T @ link_transform(row[0], row[1], theta, d)
         np.testing.assert_allclose(data.oMi[i + 1].homogeneous, T, atol=1e-12)
     pin.updateFramePlacements(model, data)
     np.testing.assert_allclose(data.oMf[model.getFrameId('link_5')].homogeneous, T, atol=1e-12)
