@@ -5,7 +5,8 @@ Turns chapters 3 and 4 of A. Ollero, "Robótica. Manipuladores y robots móviles
 its HEMERO toolbox into functions: homogeneous transforms (:mod:`~robotica_kin.transforms`),
 Craig's modified DH models (:mod:`~robotica_kin.dh`, :mod:`~robotica_kin.robots`), forward
 and inverse kinematics, Jacobians and velocity propagation, Pinocchio models built from DH
-tables, ``plotbot``, manipulator dynamics (:mod:`~robotica_kin.dynamics`, ch. 5); HEMERO's
+tables, ``plotbot``, manipulator dynamics (:mod:`~robotica_kin.dynamics`, ch. 5, and
+:mod:`~robotica_kin.moving_base` for an arm on a moving vehicle); HEMERO's
 names are gathered in :mod:`robotica_kin.hemero`. Also angle
 conventions, fixed-step integration, and the mobile-robot models of §4.7 with the odometry of
 §4.7.5. Units are SI and radians; mobile headings follow REP-103 (θ from the world x axis); the
@@ -20,7 +21,8 @@ from typing import Any
 __all__ = [
     'IKError', 'analytic_ik', 'angles', 'dh', 'differential_motion', 'dynamics',
     'forward_kinematics',
-    'hemero', 'ik', 'integrators', 'jacobian', 'mobile', 'pinocchio_model', 'plotbot', 'robots',
+    'hemero', 'ik', 'integrators', 'jacobian', 'mobile', 'moving_base', 'pinocchio_model',
+    'plotbot', 'robots',
     'transforms', 'types', 'velocity_propagation',
 ]
 

@@ -1,8 +1,8 @@
 """
 Tests of robotica_kin.dynamics (catalog Part 3: §3.5, §3.8 Ej. 5.1-5.4; §12.4 dyn table).
 
-References: the closed form (5.76)-(5.77) of Ej. 5.1 written out here, the values the catalog
-computed from it for Ej. 5.2, energy balances, and Pinocchio-style identities.
+References: the closed form (5.76)-(5.77) of Ej. 5.1 (``tests/reference_models.py``), the
+values the catalog computed from it for Ej. 5.2, energy balances, and Pinocchio-style identities.
 """
 import math
 
@@ -10,24 +10,12 @@ import numpy as np
 import pinocchio as pin
 import pytest
 
+from reference_models import closed_form_2r
 from robotica_kin.dynamics import (coriolis, coriolis_matrix, fdyn, friction, gravity, inertia,
                                    rne)
 from robotica_kin.robots import puma560, two_link_arm
 
 G = 9.81
-
-
-def _closed_form_2r(m1, m2, l1, l2, q, qd, qdd, g=G):
-    """(5.76)-(5.77) of Ej. 5.1 (primes restored as the catalog notes)."""
-    c1, c2, s2 = math.cos(q[0]), math.cos(q[1]), math.sin(q[1])
-    c12 = math.cos(q[0] + q[1])
-    M = np.array([[l2**2 * m2 + 2 * l1 * l2 * m2 * c2 + l1**2 * (m1 + m2),
-                   l2**2 * m2 + l1 * l2 * m2 * c2],
-                  [l2**2 * m2 + l1 * l2 * m2 * c2, l2**2 * m2]])
-    V = np.array([-m2 * l1 * l2 * s2 * qd[1]**2 - 2 * m2 * l1 * l2 * s2 * qd[0] * qd[1],
-                  m2 * l1 * l2 * s2 * qd[0]**2])
-    Gq = np.array([m2 * l2 * g * c12 + (m1 + m2) * l1 * g * c1, m2 * l2 * g * c12])
-    return M, V, Gq, M @ qdd + V + Gq
 
 
 @pytest.mark.parametrize('seed', range(8))
@@ -36,7 +24,7 @@ def test_ejemplo_5_1_rne_equals_the_closed_form(seed):
     m1, m2, l1, l2 = rng.uniform(0.5, 3.0, 4)
     q, qd, qdd = rng.uniform(-3, 3, (3, 2))
     _, dyn = two_link_arm(m1, m2, l1, l2)
-    M, V, Gq, tau = _closed_form_2r(m1, m2, l1, l2, q, qd, qdd)
+    M, V, Gq, tau = closed_form_2r(m1, m2, l1, l2, q, qd, qdd)
     grav = [0.0, -G, 0.0]
     np.testing.assert_allclose(rne(dyn, q, qd, qdd, grav), tau, atol=1e-10)
     np.testing.assert_allclose(inertia(dyn, q), M, atol=1e-12)
@@ -55,7 +43,7 @@ def test_ejemplo_5_2_forward_dynamics_matches_catalog_values():
     def torque(t, q, qd):
         return [30.0 + (1.0 + math.exp(-t)) * 10.0 * math.sin(t), 10.0 + 10.0 * math.cos(t)]
 
-    M, V, Gq, _ = _closed_form_2r(2.0, 1.0, 3.0, 1.0, [0, 0], [0, 0], [0, 0])
+    M, V, Gq, _ = closed_form_2r(2.0, 1.0, 3.0, 1.0, [0, 0], [0, 0], [0, 0])
     np.testing.assert_allclose(np.linalg.solve(M, np.array(torque(0, 0, 0)) - V - Gq),
                                [-6.0478, 34.3811], atol=5e-4)
     result = fdyn(dyn, 0.0, 1.0, torque, [0, 0], [0, 0], grav, t_eval=[0.5, 1.0])
