@@ -1,0 +1,108 @@
+"""
+A joint trajectory known at sample times, evaluated at any instant (the controller's reference).
+
+A ``trajectory_msgs/JointTrajectory`` carries points ``(t_k, q_k, q_k', q_k'')``; a controller
+running at another rate needs ``(q_d, q_d', q_d'')`` in between. As ros2_controllers' joint
+trajectory controller does, each interval is the Hermite polynomial that matches what the points
+give: quintic with positions, velocities and accelerations (book (10.40)-(10.52)), cubic with
+positions and velocities ((10.25)-(10.39)), linear with positions only. Before the first point
+the reference holds the first position at rest; after the last, the last position at rest.
+"""
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+from robotica_ctrl.joint_control.law import JointReference
+from scipy.interpolate import BPoly, PPoly
+
+__all__ = ['SampledTrajectory']
+
+
+def _samples(name: str, value: ArrayLike, shape: tuple[int, int]) -> NDArray[np.float64]:
+    array = np.asarray(value, dtype=np.float64)
+    if array.shape != shape:
+        raise ValueError(f'{name} must have shape {shape} (points, joints), got {array.shape}')
+    if not np.isfinite(array).all():
+        raise ValueError(f'{name} must be finite (no NaN or inf)')
+    return array
+
+
+class SampledTrajectory:
+    """
+    Piecewise Hermite interpolation of joint samples; :meth:`sample` gives a JointReference.
+
+    Parameters
+    ----------
+    times : array_like, shape (m,)
+        Sample times [s], strictly increasing (m >= 1).
+    positions : array_like, shape (m, n)
+        Joint positions [rad | m].
+    velocities, accelerations : array_like, shape (m, n), optional
+        Joint velocities [/s] and accelerations [/s²]; accelerations need velocities.
+
+    Raises
+    ------
+    ValueError
+        For times that do not increase, shapes that disagree, or non-finite values.
+
+    Examples
+    --------
+    >>> traj = SampledTrajectory([0.0, 1.0], [[0.0], [1.0]], [[0.0], [0.0]])
+    >>> ref = traj.sample(0.5)          # rest-to-rest cubic (10.89)-(10.90): midpoint, 1.5/s
+    >>> float(ref.q_d[0]), float(ref.qd_d[0])
+    (0.5, 1.5)
+
+    """
+
+    def __init__(self, times: ArrayLike, positions: ArrayLike,
+                 velocities: ArrayLike | None = None,
+                 accelerations: ArrayLike | None = None) -> None:
+        t = np.asarray(times, dtype=np.float64)
+        if t.ndim != 1 or t.size == 0 or not np.isfinite(t).all():
+            raise ValueError(f'times must be a non-empty finite vector, got {times!r}')
+        if np.any(np.diff(t) <= 0.0):
+            raise ValueError('times must be strictly increasing')
+        q = np.asarray(positions, dtype=np.float64)
+        if q.ndim != 2 or q.shape[0] != t.size or q.shape[1] == 0:
+            raise ValueError(f'positions must have shape ({t.size}, n), got {q.shape}')
+        q = _samples('positions', q, q.shape)
+        columns = [q]
+        if velocities is not None:
+            columns.append(_samples('velocities', velocities, q.shape))
+        if accelerations is not None:
+            if velocities is None:
+                raise ValueError('accelerations need velocities')
+            columns.append(_samples('accelerations', accelerations, q.shape))
+        self.times = t
+        self.n = q.shape[1]
+        self._first = q[0].copy()
+        self._last = q[-1].copy()
+        self._zero = np.zeros(self.n)
+        self._poly: list[PPoly] = []
+        if t.size > 1:
+            derivatives = np.stack(columns, axis=-1)    # (m, n, orders)
+            per_joint = [PPoly.from_bernstein_basis(BPoly.from_derivatives(t, derivatives[:, j]))
+                         for j in range(self.n)]
+            coefficients = np.stack([p.c for p in per_joint], axis=-1)   # (k, m - 1, n)
+            position = PPoly(coefficients, t, extrapolate=False)
+            self._poly = [position, position.derivative(1), position.derivative(2)]
+
+    @property
+    def start_time(self) -> float:
+        """Return the time of the first sample [s]."""
+        return float(self.times[0])
+
+    @property
+    def end_time(self) -> float:
+        """Return the time of the last sample [s]."""
+        return float(self.times[-1])
+
+    def sample(self, t: float) -> JointReference:
+        """Return the reference ``(q_d, q_d', q_d'')`` at ``t`` [s] (held outside the samples)."""
+        if not np.isfinite(t):
+            raise ValueError(f't must be finite, got {t!r}')
+        if t < self.times[0] or not self._poly:
+            return JointReference(self._first, self._zero, self._zero)
+        if t > self.times[-1]:
+            return JointReference(self._last, self._zero, self._zero)
+        position, velocity, acceleration = (p(t) for p in self._poly)
+        return JointReference(position, velocity, acceleration)
