@@ -25,6 +25,7 @@ setup(
     entry_points={
         'console_scripts': [
             'simulator = robotica_sim.nodes.simulator:main',
+            'arm_simulator = robotica_sim.nodes.arm_simulator:main',
             'encoder_emulator = robotica_sim.nodes.encoder_emulator:main',
             'odometry = robotica_sim.nodes.odometry:main',
             'path_publisher = robotica_sim.nodes.path_publisher:main',

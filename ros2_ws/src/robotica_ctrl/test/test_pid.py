@@ -118,3 +118,19 @@ def test_joint_count_is_fixed_until_reset():
     pid.update(JointReference([0.0, 0.0]), JointState([0.0, 0.0], [0.0, 0.0]), 1e-3)
     with pytest.raises(ValueError, match='reset'):
         pid.update(JointReference([0.0]), JointState([0.0], [0.0]), 1e-3)
+
+
+def test_derivative_filter_is_a_first_order_lag():
+    # A velocity-error step of 1 rad/s through 1 / (T_f s + 1), backward Euler with a = dt /
+    # (T_f + dt): f_k = 1 - (1 - a)^k after the first sample (which initialises the filter).
+    tf, dt = 0.05, 0.01
+    a = dt / (tf + dt)
+    pid = DecoupledPID(PIDGains(kp=0.0, kv=1.0, derivative_time_constant=tf))
+    assert pid.update(JointReference([0.0], [0.0]), JointState([0.0], [0.0]), dt)[0] == 0.0
+    for k in range(1, 30):
+        tau = pid.update(JointReference([0.0], [1.0]), JointState([0.0], [0.0]), dt)
+        assert tau[0] == pytest.approx(1.0 - (1.0 - a) ** k, rel=1e-12)
+    pid.reset()   # the filter restarts from the next sample
+    assert pid.update(JointReference([0.0], [1.0]), JointState([0.0], [0.0]), dt)[0] == 1.0
+    with pytest.raises(ValueError, match='derivative_time_constant'):
+        PIDGains(derivative_time_constant=-0.1)

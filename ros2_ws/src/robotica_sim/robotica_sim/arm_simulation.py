@@ -6,7 +6,10 @@ classical RK4 with the torque held over the step (zero-order hold, as a digital 
 applies it). ``F`` is the friction of the robot's ``dyn`` table; ``B_u`` an optional unmodelled
 viscous friction per joint [N m s] that the controller's model does not know (the appendix's
 PUMA example adds 0.1 N m s on joint 1). Torques are saturated at ``tau_max``; a joint that
-reaches a limit stops there (its velocity is zeroed if it points outwards).
+reaches a limit stops there (its velocity is zeroed if it points outwards). A payload grasped
+at some instant (Ej. 8.4) is added to the last link's inertia with
+:meth:`ArmSimulation.add_payload`; :meth:`ArmSimulation.step_braked` is the safe stop (brakes
+hold the joints).
 
 The state is owned here; time is a step counter times ``step_period`` (no clock is read).
 """
@@ -145,6 +148,45 @@ class ArmSimulation:
         self.applied_torque = torque
         self.steps += 1
         return self.q
+
+    def step_braked(self) -> NDArray[np.float64]:
+        """
+        Advance one step with the joint brakes engaged: velocities zero, positions held.
+
+        The safe stop of a simulator whose torque command is stale or missing; return q.
+        """
+        self.qd = np.zeros(self.robot.n)
+        self.applied_torque = np.zeros(self.robot.n)
+        self.steps += 1
+        return self.q
+
+    def add_payload(self, mass: float, com: ArrayLike) -> None:
+        """
+        Rigidly attach a point mass to the last link (the plant changes, not the controller's).
+
+        Parameters
+        ----------
+        mass : float
+            Payload mass [kg], finite and > 0 (Ej. 8.4: 2 kg grasped at t = 10 s).
+        com : array_like, shape (3,)
+            Its position [m] in the last link's frame {n} (Ej. 8.4: the link-2 mass point,
+            ``[l2, 0, 0]``, so that the link's centre of mass is unchanged).
+
+        Raises
+        ------
+        ValueError
+            For a mass that is not finite and > 0, or a position that is not 3 finite values.
+
+        """
+        point = np.asarray(com, dtype=np.float64)
+        if not (math.isfinite(mass) and mass > 0.0):
+            raise ValueError(f'payload mass must be finite and > 0 kg, got {mass!r}')
+        if point.shape != (3,) or not np.isfinite(point).all():
+            raise ValueError(f'payload com must be 3 finite values [m] in frame {{n}}, '
+                             f'got {com!r}')
+        n = self.robot.n
+        self._model.inertias[n] = self._model.inertias[n] + pin.Inertia(mass, point,
+                                                                        np.zeros((3, 3)))
 
     def _stop_at_limits(self) -> None:
         low, high = self.robot.qlim[:, 0], self.robot.qlim[:, 1]

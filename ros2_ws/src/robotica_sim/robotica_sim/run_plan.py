@@ -8,14 +8,20 @@ processes is :mod:`robotica_sim.process_supervisor`'s job.
 from dataclasses import dataclass, field
 import math
 
+import numpy as np
 from robotica_ctrl import path_shapes
+from robotica_kin.robots import puma560, two_link_arm
 from robotica_sim.scenario import Scenario, ScenarioError
 
 PATH_SHAPES = ('straight_line', 'circle', 'rounded_rectangle', 'figure_eight')
 STATUS_TOPIC = '/simulator/status'
 TRACKING_ERROR_TOPIC = '/path_tracker/tracking_error'
+CONTROLLER_STATE_TOPIC = '/joint_controller/controller_state'
+TRAJECTORY_TOPIC = '/joint_controller/joint_trajectory'
 RECORDED_TOPICS = ('/clock', '/cmd_vel', '/odom', '/ground_truth/odom', '/joint_states',
                    '/wheel_encoders', '/path', TRACKING_ERROR_TOPIC, STATUS_TOPIC, '/rosout')
+ARM_RECORDED_TOPICS = ('/clock', '/joint_states', '/joint_torques', CONTROLLER_STATE_TOPIC,
+                       TRAJECTORY_TOPIC, STATUS_TOPIC, '/rosout')
 
 
 @dataclass(frozen=True)
@@ -43,8 +49,91 @@ def path_points(scenario: Scenario) -> list[list[float]]:
     return [[round(float(x), 9), round(float(y), 9)] for x, y in points]   # [m], to 1 nm
 
 
+def recorded_topics(scenario: Scenario) -> tuple[str, ...]:
+    """Return the topics the recorder records for ``scenario``."""
+    return ARM_RECORDED_TOPICS if scenario.is_manipulator else RECORDED_TOPICS
+
+
 def plan_run(scenario: Scenario) -> list[NodeSpec]:
     """Return the nodes of a run, in start order (the recorder is added by the caller)."""
+    return _plan_arm(scenario) if scenario.is_manipulator else _plan_mobile(scenario)
+
+
+def _floats(values) -> list[float]:
+    return [float(v) for v in values]
+
+
+def _arm_parameters(scenario: Scenario) -> tuple[dict, dict, list[str]]:
+    """Return the plant's and the controller's model parameters and the joint names."""
+    arm = scenario.arm
+    if arm.model == 'puma560':
+        return {'robot': 'puma560'}, {'robot': 'puma560'}, list(puma560().joint_names)
+    dyn = two_link_arm(*arm.masses, *arm.lengths)[1]
+    masses = scenario.controller.model_masses or arm.masses
+    estimate = two_link_arm(*masses, *arm.lengths)[1]
+    return ({'robot': '', 'dyn_table': _floats(np.ravel(dyn))},
+            {'robot': '', 'dyn_table': _floats(np.ravel(estimate))}, ['joint_1', 'joint_2'])
+
+
+def _numbers(value, where: str) -> list[float]:
+    """Return a number or a list of numbers as a list of floats, or raise ScenarioError."""
+    values = value if isinstance(value, list) else [value]
+    if not values or any(isinstance(v, bool) or not isinstance(v, (int, float))
+                         or not math.isfinite(v) for v in values):
+        raise ScenarioError(f'{where} must be a finite number or a list of them, got {value!r}')
+    return _floats(values)
+
+
+REFERENCE_KEYS = {**{k: f'sine.{k}' for k in ('amplitude', 'period', 'phase', 'offset')},
+                  **{k: f'via.{k}' for k in ('positions', 'velocities', 'accelerations',
+                                             'segment_durations')},
+                  'acceleration': 'parab.acceleration'}
+
+
+def _reference_parameters(scenario: Scenario, joints: list[str]) -> dict:
+    """Return the parameters of joint_trajectory_publisher for the scenario's reference."""
+    where = scenario.source or scenario.name
+    params: dict = {'generator': scenario.reference.generator, 'joint_names': joints,
+                    'duration': scenario.duration + 1.0}
+    for key, value in scenario.reference.args.items():
+        if key == 'sample_period':
+            params[key] = _numbers(value, f'{where}: reference.{key}')[0]
+        elif key in REFERENCE_KEYS:
+            params[REFERENCE_KEYS[key]] = _numbers(value, f'{where}: reference.{key}')
+        else:
+            raise ScenarioError(f'{where}: unknown key reference.{key}; known: generator, '
+                                f'sample_period, {", ".join(REFERENCE_KEYS)}')
+    return params
+
+
+def _plan_arm(scenario: Scenario) -> list[NodeSpec]:
+    where = scenario.source or scenario.name
+    arm = scenario.arm
+    plant, model, joints = _arm_parameters(scenario)
+    gains = {f'{scenario.controller.law}.{key}': _numbers(value, f'{where}: controller.{key}')
+             for key, value in scenario.controller.gains.items()}
+    simulator = {**plant, 'gravity': _floats(arm.gravity), 'step_period': scenario.step_period,
+                 'pacing': scenario.pacing, 'end_time': scenario.duration, 'autostart': False,
+                 'respect_limits': arm.respect_limits}
+    for key in ('initial_positions', 'initial_velocities', 'tau_max', 'unmodelled_viscous'):
+        if getattr(arm, key):
+            simulator[key] = _floats(getattr(arm, key))
+    if arm.payload.mass > 0.0:
+        simulator.update({'payload.mass': arm.payload.mass, 'payload.com': _floats(
+            arm.payload.com), 'payload.time': arm.payload.time})
+    return [
+        NodeSpec('robotica_ctrl', 'joint_trajectory_publisher', 'joint_trajectory_publisher',
+                 _reference_parameters(scenario, joints),
+                 remappings={'joint_trajectory': TRAJECTORY_TOPIC}),
+        NodeSpec('robotica_ctrl', 'joint_controller', 'joint_controller', {
+            'law': scenario.controller.law, **model, 'gravity': _floats(arm.gravity),
+            'use_friction': scenario.controller.use_friction,
+            'first_period': scenario.step_period, **gains}),
+        NodeSpec('robotica_sim', 'arm_simulator', 'simulator', simulator),
+    ]
+
+
+def _plan_mobile(scenario: Scenario) -> list[NodeSpec]:
     where = scenario.source or scenario.name
     robot = scenario.robot
     x0, y0, theta0 = robot.initial_pose

@@ -1,6 +1,10 @@
 """
 Scenarios: what a run is made of (robot, path, sensors, tracker, pacing, seed, duration).
 
+Two kinds of run: a mobile robot (``robot.type: differential_drive``, sections ``path``,
+``sensors``, ``odometry``, ``tracker``) and a manipulator (``robot.type: manipulator``, sections
+``arm``, ``reference``, ``controller``, book ch. 8). A section of the other kind is an error.
+
 A scenario is a YAML file, validated strictly when loaded: an unknown key, a value of the wrong
 type or out of range gives a :class:`ScenarioError` naming the key, never a silently ignored
 setting. Shipped scenarios live in ``share/robotica_sim/scenarios`` and can be named without
@@ -69,6 +73,54 @@ class TrackerSpec:
     gains: dict = field(default_factory=dict)
 
 
+ARM_MODELS = ('puma560', 'two_link_arm')
+MOBILE_SECTIONS = ('path', 'sensors', 'odometry', 'tracker')
+ARM_SECTIONS = ('arm', 'reference', 'controller')
+
+
+@dataclass(frozen=True)
+class PayloadSpec:
+    """A payload grasped during the run (Ej. 8.4)."""
+
+    mass: float = 0.0                              # [kg]; 0: none
+    com: tuple[float, ...] = (0.0, 0.0, 0.0)       # [m] in the last link's frame {n}
+    time: float = 0.0                              # [s] simulated
+
+
+@dataclass(frozen=True)
+class ArmSpec:
+    """The simulated manipulator (the plant, book ch. 5)."""
+
+    model: str = 'puma560'                         # one of ARM_MODELS
+    masses: tuple[float, ...] = ()                 # two_link_arm: (m1, m2) [kg], Ej. 5.1
+    lengths: tuple[float, ...] = ()                # two_link_arm: (l1, l2) [m]
+    gravity: tuple[float, ...] = (0.0, 0.0, -9.81)     # [m/s^2] in the base frame {0}
+    initial_positions: tuple[float, ...] = ()      # q(0) [rad | m]; () = zeros
+    initial_velocities: tuple[float, ...] = ()     # q'(0); () = zeros
+    tau_max: tuple[float, ...] = ()                # [N m], 1 or n values; () = none
+    unmodelled_viscous: tuple[float, ...] = ()     # [N m s], 1 or n values (App. A)
+    respect_limits: bool = True
+    payload: PayloadSpec = PayloadSpec()
+
+
+@dataclass(frozen=True)
+class ReferenceSpec:
+    """The joint reference: a generator of ``joint_trajectory_publisher`` and its parameters."""
+
+    generator: str = 'sine'
+    args: dict = field(default_factory=dict)       # its parameters (sine.*, via.*, ...)
+
+
+@dataclass(frozen=True)
+class ControllerSpec:
+    """The joint controller: its law, the law's gains and the model it believes in."""
+
+    law: str = 'computed_torque'
+    model_masses: tuple[float, ...] = ()           # two_link_arm estimate (m̂1, m̂2); () exact
+    use_friction: bool = True
+    gains: dict = field(default_factory=dict)
+
+
 @dataclass(frozen=True)
 class Scenario:
     """A whole run."""
@@ -84,15 +136,37 @@ class Scenario:
     sensors: SensorsSpec = SensorsSpec()
     odometry: OdometrySpec = OdometrySpec()
     tracker: TrackerSpec = TrackerSpec()
+    arm: ArmSpec = ArmSpec()
+    reference: ReferenceSpec = ReferenceSpec()
+    controller: ControllerSpec = ControllerSpec()
     source: Optional[str] = None                   # the file it was loaded from
+
+    @property
+    def is_manipulator(self) -> bool:
+        """Return whether the run simulates a manipulator (else a mobile robot)."""
+        return self.robot.type == 'manipulator'
 
     def __post_init__(self) -> None:
         checks = [
             (self.duration > 0.0 and math.isfinite(self.duration), 'duration must be > 0 s'),
             (self.pacing in ('lockstep', 'realtime'), 'pacing must be lockstep or realtime'),
             (0.0 < self.step_period <= 1.0, 'step_period must be in (0, 1] s'),
-            (self.robot.type == 'differential_drive',
-             'robot.type: only differential_drive is simulated so far'),
+            (self.robot.type in ('differential_drive', 'manipulator'),
+             'robot.type must be differential_drive or manipulator'),
+            (self.arm.model in ARM_MODELS, f'arm.model must be one of {ARM_MODELS}'),
+            (self.arm.model != 'two_link_arm' or (
+                len(self.arm.masses) == len(self.arm.lengths) == 2
+                and min(self.arm.masses) >= 0.0 and min(self.arm.lengths) > 0.0),
+             'arm.masses and arm.lengths: two_link_arm needs [m1, m2] >= 0 kg and [l1, l2] > 0 m'),
+            (self.arm.model == 'two_link_arm' or not (self.arm.masses or self.arm.lengths),
+             'arm.masses and arm.lengths are for two_link_arm only'),
+            (len(self.arm.gravity) == 3, 'arm.gravity must be 3 values [m/s^2]'),
+            (self.arm.payload.mass >= 0.0 and len(self.arm.payload.com) == 3
+             and self.arm.payload.time >= 0.0,
+             'arm.payload: mass >= 0 kg, com [x, y, z] m, time >= 0 s'),
+            (len(self.controller.model_masses) in (0, 2) and (
+                not self.controller.model_masses or self.arm.model == 'two_link_arm'),
+             'controller.model_masses: [m1, m2] of a two_link_arm model'),
             (self.robot.wheel_radius > 0.0, 'robot.wheel_radius must be > 0 m'),
             (self.robot.wheel_separation > 0.0, 'robot.wheel_separation must be > 0 m'),
             (len(self.robot.initial_pose) == 3
@@ -132,6 +206,10 @@ def _convert(value: Any, kind: Any, where: str) -> Any:
         if isinstance(value, bool) or not isinstance(value, int):
             raise ScenarioError(f'{where}: expected an integer, got {value!r}')
         return value
+    if kind is bool:
+        if not isinstance(value, bool):
+            raise ScenarioError(f'{where}: expected true or false, got {value!r}')
+        return value
     if kind in (str, Optional[str]):
         if not isinstance(value, str):
             raise ScenarioError(f'{where}: expected a string, got {value!r}')
@@ -156,11 +234,25 @@ def _normalise(data: dict) -> dict:
         path = dict(data['path'])
         data['path'] = {k: path.pop(k) for k in ('shape', 'frame_id') if k in path}
         data['path']['args'] = path
-    if isinstance(data.get('tracker'), dict):
-        tracker = dict(data['tracker'])
-        data['tracker'] = {'gains': tracker, **({'law': tracker.pop('law')}
-                                                if 'law' in tracker else {})}
+    for section, fixed, free in (('tracker', ('law',), 'gains'),
+                                 ('reference', ('generator',), 'args'),
+                                 ('controller', ('law', 'model_masses', 'use_friction'),
+                                  'gains')):
+        if isinstance(data.get(section), dict):
+            values = dict(data[section])
+            data[section] = {free: values, **{k: values.pop(k) for k in fixed if k in values}}
     return data
+
+
+def _check_sections(data: dict, where: str) -> None:
+    """Refuse the sections of the other kind of run (they would be silently ignored)."""
+    robot = data.get('robot')
+    manipulator = isinstance(robot, dict) and robot.get('type') == 'manipulator'
+    foreign = [k for k in (MOBILE_SECTIONS if manipulator else ARM_SECTIONS) if k in data]
+    if foreign:
+        kind = 'manipulator' if manipulator else 'differential_drive'
+        raise ScenarioError(f'{where}: section(s) {", ".join(foreign)} do not apply to a '
+                            f'{kind} run')
 
 
 def resolve_scenario_path(name_or_path: str) -> Path:
@@ -192,4 +284,5 @@ def load_scenario(name_or_path: str) -> Scenario:
         raise ScenarioError(f'{path}: a scenario is a YAML mapping')
     data.setdefault('name', path.stem)
     data['source'] = str(path)
+    _check_sections(data, str(path))
     return _build(Scenario, _normalise(data), str(path))

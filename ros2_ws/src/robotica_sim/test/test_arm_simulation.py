@@ -7,8 +7,10 @@ energy balance of the free Ej. 5.3 arm.
 import math
 
 import numpy as np
+import pinocchio as pin
 import pytest
-
+from robotica_ctrl.joint_control import (ComputedTorque, ComputedTorqueGains, JointReference,
+                                         JointState)
 from robotica_kin.dh import dh_model
 from robotica_kin.dynamics import inertia
 from robotica_kin.robots import puma560, two_link_arm
@@ -76,6 +78,56 @@ def test_saturation_and_joint_limits():
     assert sim.qd[4] == 0.0
 
 
+def _mass_matrix_2r(q2, m1, m2, l1=3.0, l2=1.0):
+    """Return M(q) of the Ej. 5.1 arm by its closed form (5.76)."""
+    c2 = math.cos(q2)
+    m12 = l2 ** 2 * m2 + l1 * l2 * m2 * c2
+    return np.array([[l2 ** 2 * m2 + 2 * l1 * l2 * m2 * c2 + l1 ** 2 * (m1 + m2), m12],
+                     [m12, l2 ** 2 * m2]])
+
+
+def test_payload_at_the_link_mass_point_is_a_heavier_link():
+    # Ej. 8.4: 2 kg grasped at the link-2 mass point make m2 = 3 kg (CoM of link 2 unchanged).
+    sim = _two_link()
+    sim.add_payload(2.0, [1.0, 0.0, 0.0])
+    q = np.array([0.3, 0.7])
+    M = pin.crba(sim._model, sim._model.createData(), q)
+    np.testing.assert_allclose(np.triu(M), np.triu(_mass_matrix_2r(0.7, 2.0, 3.0)), atol=1e-12)
+
+
+def test_ejemplo_8_4_payload_spoils_tracking():
+    # Catalog §6.8, Ej. 8.4: PD computed torque with m̂ = (2.1, 0.9) kg; a 2 kg object grasped at
+    # t = 10 s; the catalog's independent run gives max |e| over 15-20 s ≈ [0.047; 0.66] rad.
+    dh, dyn_true = two_link_arm(2.0, 1.0, 3.0, 1.0)
+    model = dh_model(dh, dyn=two_link_arm(2.1, 0.9, 3.0, 1.0)[1])
+    law = ComputedTorque(model, ComputedTorqueGains(kp=25.0, kv=10.0), grav=PLANAR)
+    sim = _two_link()
+    errors = []
+    for k in range(20000):
+        t = k * 1e-3
+        w = 2 * math.pi / 4.0
+        reference = JointReference(
+            0.15 * np.array([math.sin(w * t), math.cos(w * t)]),
+            0.15 * w * np.array([math.cos(w * t), -math.sin(w * t)]),
+            -0.15 * w * w * np.array([math.sin(w * t), math.cos(w * t)]))
+        if k == 10000:
+            sim.add_payload(2.0, [1.0, 0.0, 0.0])
+        if t >= 15.0:
+            errors.append(np.abs(reference.q_d - sim.q))
+        sim.step(law.update(reference, JointState(sim.q, sim.qd), 1e-3))
+    np.testing.assert_allclose(np.max(errors, axis=0), [0.047, 0.66], rtol=0.05)
+
+
+def test_brakes_hold_the_joints():
+    sim = _two_link()
+    sim.step([50.0, 0.0])
+    q = sim.q.copy()
+    sim.step_braked()
+    assert sim.time == pytest.approx(2e-3)
+    np.testing.assert_array_equal(sim.q, q)
+    np.testing.assert_array_equal(sim.qd, [0.0, 0.0])
+
+
 @pytest.mark.parametrize(('call', 'match'), [
     (lambda: ArmSimulationParams(step_period=0.0), 'step_period'),
     (lambda: ArmSimulationParams(tau_max=(0.0,)), 'tau_max'),
@@ -85,6 +137,8 @@ def test_saturation_and_joint_limits():
     (lambda: ArmSimulation(puma560(), ArmSimulationParams(), np.zeros(5), np.zeros(6)), 'q0'),
     (lambda: _two_link().step([0.0, math.nan]), 'finite'),
     (lambda: _two_link().step([0.0]), 'finite'),
+    (lambda: _two_link().add_payload(math.nan, [1.0, 0.0, 0.0]), 'mass'),
+    (lambda: _two_link().add_payload(1.0, [1.0, 0.0]), 'com'),
 ])
 def test_bad_input_is_refused(call, match):
     with pytest.raises(ValueError, match=match):

@@ -3,13 +3,16 @@ import math
 from pathlib import Path
 import textwrap
 
+import numpy as np
 import pytest
-
+from robotica_kin.robots import two_link_arm
 from robotica_sim.run_plan import (
-    path_points, plan_run, RECORDED_TOPICS, STATUS_TOPIC, TRACKING_ERROR_TOPIC)
+    ARM_RECORDED_TOPICS, CONTROLLER_STATE_TOPIC, path_points, plan_run, RECORDED_TOPICS,
+    recorded_topics, STATUS_TOPIC, TRACKING_ERROR_TOPIC, TRAJECTORY_TOPIC)
 from robotica_sim.scenario import load_scenario, PathSpec, Scenario, ScenarioError
 
-DEMO = Path(__file__).resolve().parents[1] / 'scenarios' / 'demo.yaml'
+SHIPPED = Path(__file__).resolve().parents[1] / 'scenarios'
+DEMO = SHIPPED / 'demo.yaml'
 START_ORDER = ['path_publisher', 'encoder_emulator', 'odometry', 'path_tracker', 'simulator']
 
 
@@ -200,4 +203,53 @@ def test_bool_gain_is_refused(tmp_path):
           lookahead_distance: true
         """)
     with pytest.raises(ScenarioError, match='lookahead_distance'):
+        plan_run(load_scenario(str(path)))
+
+
+def test_ej8_4_plan_wires_the_arm_loop():
+    scenario = load_scenario(str(SHIPPED / 'ej8_4.yaml'))
+    nodes = by_name(plan_run(scenario))
+    assert list(nodes) == ['joint_trajectory_publisher', 'joint_controller', 'simulator']
+    assert nodes['simulator'].executable == 'arm_simulator'
+    plant, controller = nodes['simulator'].parameters, nodes['joint_controller'].parameters
+    # The plant is the true arm (2, 1 kg), the controller's model the wrong one (2.1, 0.9 kg).
+    assert plant['dyn_table'] == np.ravel(two_link_arm(2.0, 1.0, 3.0, 1.0)[1]).tolist()
+    assert controller['dyn_table'] == np.ravel(two_link_arm(2.1, 0.9, 3.0, 1.0)[1]).tolist()
+    assert plant['robot'] == controller['robot'] == ''
+    assert plant['gravity'] == controller['gravity'] == [0.0, -9.81, 0.0]
+    assert (plant['payload.mass'], plant['payload.com'], plant['payload.time']) == (
+        2.0, [1.0, 0.0, 0.0], 10.0)
+    assert (plant['pacing'], plant['step_period'], plant['end_time']) == ('lockstep', 0.001, 20.0)
+    assert controller['law'] == 'computed_torque'
+    assert (controller['computed_torque.kp'], controller['computed_torque.kv']) == ([25.0], [10.0])
+    assert controller['first_period'] == 0.001
+    reference = nodes['joint_trajectory_publisher']
+    assert reference.remappings == {'joint_trajectory': TRAJECTORY_TOPIC}
+    assert reference.parameters['sine.amplitude'] == [0.15]
+    assert reference.parameters['sine.phase'] == [0.0, math.pi / 2]
+    assert reference.parameters['joint_names'] == ['joint_1', 'joint_2']
+    assert reference.parameters['duration'] > scenario.duration
+
+
+def test_arm_runs_record_the_arm_topics():
+    scenario = load_scenario(str(SHIPPED / 'puma_computed_torque_friction.yaml'))
+    assert recorded_topics(scenario) == ARM_RECORDED_TOPICS
+    assert {CONTROLLER_STATE_TOPIC, TRAJECTORY_TOPIC, '/joint_states', '/joint_torques',
+            STATUS_TOPIC} <= set(ARM_RECORDED_TOPICS)
+    nodes = by_name(plan_run(scenario))
+    assert CONTROLLER_STATE_TOPIC == f'/{nodes["joint_controller"].name}/controller_state'
+    assert nodes['simulator'].parameters['robot'] == 'puma560'
+    assert nodes['simulator'].parameters['unmodelled_viscous'] == [0.1, 0.0, 0.0, 0.0, 0.0, 0.0]
+    assert 'unmodelled_viscous' not in nodes['joint_controller'].parameters
+
+
+@pytest.mark.parametrize('reference, expected', [
+    ('  spline_order: 3\n', 'unknown key reference.spline_order'),
+    ('  amplitude: [0.1, .nan]\n', 'reference.amplitude must be a finite number'),
+    ('  amplitude: yes\n', 'reference.amplitude must be a finite number'),
+])
+def test_bad_reference_is_a_scenario_error(tmp_path, reference, expected):
+    path = write(tmp_path, 'robot:\n  type: manipulator\nreference:\n  generator: sine\n'
+                 + reference)
+    with pytest.raises(ScenarioError, match=expected):
         plan_run(load_scenario(str(path)))

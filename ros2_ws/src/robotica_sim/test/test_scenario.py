@@ -9,7 +9,8 @@ from robotica_sim import scenario as scenario_module
 from robotica_sim.scenario import load_scenario, resolve_scenario_path, ScenarioError
 
 PACKAGE_DIR = Path(__file__).resolve().parents[1]
-DEMO = PACKAGE_DIR / 'scenarios' / 'demo.yaml'
+SHIPPED = PACKAGE_DIR / 'scenarios'
+DEMO = SHIPPED / 'demo.yaml'
 
 
 def write(tmp_path, text, name='bad.yaml'):
@@ -112,6 +113,16 @@ def test_free_form_sections_are_folded(tmp_path):
      ['sensors.encoders.ticks_per_revolution']),
     ('name: 5\n', ['name']),
     ('odometry:\n  integration_method: 2\n', ['odometry.integration_method']),
+    ('robot:\n  type: manipulator\narm:\n  model: scara\n', ['arm.model']),
+    ('robot:\n  type: manipulator\narm:\n  model: two_link_arm\n  masses: [1.0]\n',
+     ['arm.masses']),
+    ('robot:\n  type: manipulator\narm:\n  masses: [1.0, 2.0]\n', ['arm.masses']),
+    ('robot:\n  type: manipulator\ncontroller:\n  model_masses: [1.0, 2.0]\n',
+     ['controller.model_masses']),
+    ('robot:\n  type: manipulator\narm:\n  payload:\n    mass: -2.0\n', ['arm.payload']),
+    ('robot:\n  type: manipulator\narm:\n  respect_limits: 1\n', ['arm.respect_limits']),
+    ('robot:\n  type: manipulator\npath: {shape: circle}\n', ['path']),
+    ('tracker:\n  law: pure_pursuit\ncontroller:\n  law: pid\n', ['controller']),
 ])
 def test_bad_value_names_the_file_and_key(tmp_path, text, keys):
     path = write(tmp_path, text)
@@ -190,3 +201,20 @@ def test_unknown_keys_of_mixed_types(tmp_path):
     path = write(tmp_path, 'robot:\n  1: a\n  colour: red\n')
     with pytest.raises(ScenarioError, match='robot'):
         load_scenario(str(path))
+
+
+def test_shipped_arm_scenarios_load():
+    for name, payload, ki in (('ej8_1', 0.0, None), ('ej8_2', 0.0, None), ('ej8_3', 0.0, 100.0),
+                              ('ej8_4', 2.0, None), ('ej8_5', 2.0, 25.0)):
+        scenario = load_scenario(str(SHIPPED / f'{name}.yaml'))
+        assert scenario.is_manipulator and scenario.name == name
+        assert scenario.arm.model == 'two_link_arm'
+        assert scenario.arm.masses == (2.0, 1.0) and scenario.arm.lengths == (3.0, 1.0)
+        assert scenario.arm.payload.mass == payload
+        assert scenario.controller.gains.get('ki') == ki
+        assert scenario.controller.model_masses == (() if name == 'ej8_1' else (2.1, 0.9))
+    for name, viscous in (('puma_computed_torque', ()),
+                          ('puma_computed_torque_friction', (0.1, 0.0, 0.0, 0.0, 0.0, 0.0))):
+        scenario = load_scenario(str(SHIPPED / f'{name}.yaml'))
+        assert scenario.arm.model == 'puma560' and scenario.arm.unmodelled_viscous == viscous
+        assert scenario.controller.gains == {'kp': 25.0, 'kv': 10.0}

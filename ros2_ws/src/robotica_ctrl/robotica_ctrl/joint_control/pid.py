@@ -4,7 +4,10 @@ Decoupled (independent-joint) PID control, book §8.2, (8.10) (seed catalogue Pa
 Per joint ``u = K_p e + K_v e' + K_i ∫ e dt`` with ``e = q_d - q``. Design choices:
 
 - the derivative term uses the measured velocity error ``e' = q_d' - q'`` (no differentiation of
-  a noisy position, no derivative kick on a set-point step), as in (8.30)-(8.31);
+  a noisy position, no derivative kick on a set-point step), as in (8.30)-(8.31), optionally
+  low-pass filtered, ``1 / (T_f s + 1)`` discretised by backward Euler:
+  ``f_k = f_{k-1} + dt / (T_f + dt) (e'_k - f_{k-1})`` (``T_f = derivative_time_constant``, 0:
+  unfiltered), for a velocity measured by differencing encoder counts;
 - the integral is accumulated by the rectangle rule, ``I_k = I_{k-1} + e_k dt``, and used in the
   same sample;
 - anti-windup: the integral is clamped to ``±integral_max`` and, when the output saturates at
@@ -37,9 +40,10 @@ class PIDGains:
     ki: ArrayLike = 0.0               # K_i [N m/(rad s)]
     tau_max: ArrayLike = np.inf       # torque saturation [N m], > 0
     integral_max: ArrayLike = np.inf  # clamp of ∫e dt [rad s], > 0
+    derivative_time_constant: ArrayLike = 0.0   # T_f of the e' filter [s]; 0: none
 
     def __post_init__(self) -> None:
-        for name in ('kp', 'kv', 'ki'):
+        for name in ('kp', 'kv', 'ki', 'derivative_time_constant'):
             gain_field(self, name)
         for name in ('tau_max', 'integral_max'):
             gain_field(self, name, positive=True, allow_inf=True)
@@ -67,6 +71,7 @@ class DecoupledPID(JointControlLaw):
             raise ValueError(f'gains must be PIDGains, got {type(gains).__name__}')
         self.gains = PIDGains() if gains is None else gains
         self._integral: NDArray[np.float64] | None = None
+        self._filtered_rate: NDArray[np.float64] | None = None
 
     @property
     def integral(self) -> NDArray[np.float64] | None:
@@ -74,8 +79,9 @@ class DecoupledPID(JointControlLaw):
         return None if self._integral is None else self._integral.copy()
 
     def reset(self) -> None:
-        """Clear the integral (and forget the number of joints)."""
+        """Clear the integral and the derivative filter (and forget the number of joints)."""
         self._integral = None
+        self._filtered_rate = None
 
     def update(self, reference: JointReference, state: JointState,
                dt: float) -> NDArray[np.float64]:
@@ -100,6 +106,10 @@ class DecoupledPID(JointControlLaw):
         previous = np.zeros(n) if self._integral is None else self._integral
         e = np.asarray(reference.q_d) - np.asarray(state.q)
         ed = np.asarray(reference.qd_d) - np.asarray(state.qd)
+        time_constant = per_joint('derivative_time_constant', g.derivative_time_constant, n)
+        if self._filtered_rate is not None:
+            ed = self._filtered_rate + dt / (time_constant + dt) * (ed - self._filtered_rate)
+        self._filtered_rate = ed
         pd = kp * e + kv * ed
         candidate = np.clip(previous + e * dt, -integral_max, integral_max)
         u = pd + ki * candidate

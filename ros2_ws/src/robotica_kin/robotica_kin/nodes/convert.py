@@ -6,27 +6,29 @@ counter-clockwise); times are float seconds. Used by the nodes of every robotica
 """
 import math
 
-from builtin_interfaces.msg import Time
+from builtin_interfaces.msg import Duration, Time
 from geometry_msgs.msg import PoseStamped, Quaternion
 from nav_msgs.msg import Odometry, Path
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 
-def stamp_to_seconds(stamp: Time) -> float:
-    """Return a ``builtin_interfaces/Time`` as float seconds."""
+def stamp_to_seconds(stamp: Time | Duration) -> float:
+    """Return a ``builtin_interfaces/Time`` (or ``Duration``) as float seconds."""
     return stamp.sec + stamp.nanosec * 1e-9
 
 
-def seconds_to_stamp(t: float) -> Time:
+def seconds_to_stamp(t: float, kind: type = Time) -> Time:
     """
     Return float seconds ``t`` >= 0 as a ``builtin_interfaces/Time`` (rounded to 1 ns).
+
+    ``kind=Duration`` gives a ``builtin_interfaces/Duration`` (e.g. ``time_from_start``).
 
     >>> seconds_to_stamp(1.5)
     builtin_interfaces.msg.Time(sec=1, nanosec=500000000)
     """
     ns = round(t * 1e9)
-    return Time(sec=ns // 1_000_000_000, nanosec=ns % 1_000_000_000)
+    return kind(sec=ns // 1_000_000_000, nanosec=ns % 1_000_000_000)
 
 
 def yaw_to_quaternion(yaw: float) -> Quaternion:

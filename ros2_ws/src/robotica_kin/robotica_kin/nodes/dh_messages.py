@@ -168,6 +168,69 @@ def robot_from_parameters(robot: str, dh_table: Optional[Sequence[float]],
                     dyn=model.dyn, tool=model.tool)
 
 
+def dynamic_robot_from_parameters(robot: str, dyn_table: Optional[Sequence[float]],
+                                  joint_names: Optional[Sequence[str]] = None,
+                                  joint_limits: Optional[Sequence[float]] = None) -> DHModel:
+    """
+    Return a node's robot with dynamics: the built-in ``robot`` or the flattened ``dyn_table``.
+
+    Parameters
+    ----------
+    robot : str
+        A name of :data:`robotica_kin.robots.ROBOT_NAMES` whose model has a ``dyn`` table, or ''
+        to use ``dyn_table``.
+    dyn_table : sequence of float or None
+        HEMERO ``dyn`` table (n, 20) flattened row-major (book §A.3: DH row, mass, centre of
+        mass, inertia tensor, motor inertia, gear ratio, viscous and Coulomb friction).
+    joint_names : sequence of str or None
+        One name per joint; empty or None keeps the model's names.
+    joint_limits : sequence of float or None
+        ``[low_1, high_1, ..., low_n, high_n]`` [rad | m]; empty or None keeps the model's.
+
+    Raises
+    ------
+    ValueError
+        As :func:`robot_from_parameters`, and for a robot without dynamic parameters, a table
+        whose length is not a multiple of 20, or limits that are not n finite (low < high) pairs.
+
+    Examples
+    --------
+    >>> robot = dynamic_robot_from_parameters('', [0.0] * 5 + [1.0] + [0.0] * 14)
+    >>> robot.n, float(robot.dyn[0, 5])
+    (1, 1.0)
+    >>> dynamic_robot_from_parameters('planar_rr', None)
+    Traceback (most recent call last):
+    ...
+    ValueError: robot 'planar_rr' has no dynamic parameters: give a dyn_table instead
+
+    """
+    values = list(dyn_table or [])
+    if robot and values:
+        raise ValueError(f"robot {robot!r} and dyn_table both given: set robot to '' to use "
+                         'dyn_table')
+    if robot:
+        model = robot_by_name(robot)
+        if model.dyn is None:
+            raise ValueError(f'robot {robot!r} has no dynamic parameters: give a dyn_table '
+                             'instead')
+    else:
+        if not values or len(values) % 20:
+            raise ValueError('dyn_table must hold n rows of 20 values (HEMERO dyn), got '
+                             f'{len(values)} values')
+        table = np.reshape(np.asarray(values, dtype=np.float64), (-1, 20))
+        model = dh_model(table[:, :5], name='dyn_table', dyn=table)
+    qlim = model.qlim
+    if joint_limits:
+        qlim = np.reshape(np.asarray(joint_limits, dtype=np.float64), (-1, 2)) \
+            if len(joint_limits) == 2 * model.n else None
+        if qlim is None or not np.isfinite(qlim).all() or np.any(qlim[:, 0] >= qlim[:, 1]):
+            raise ValueError(f'joint_limits must be {model.n} pairs [low, high] with low < high, '
+                             f'got {list(joint_limits)}')
+    return dh_model(model.table, name=model.name, qlim=qlim,
+                    joint_names=list(joint_names) if joint_names else model.joint_names,
+                    dyn=model.dyn, tool=model.tool)
+
+
 def request_robot(robot: str, dh: DHTable, default: DHModel) -> DHModel:
     """
     Return the robot a service request asks for: ``robot`` by name, else ``dh``, else ``default``.

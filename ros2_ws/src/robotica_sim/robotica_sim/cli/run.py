@@ -1,10 +1,11 @@
 """
 Run a scenario: every node in its own process, the whole run recorded to a bag.
 
-Starts the recorder, the path publisher, the encoder emulator, the odometry, the path tracker
-and the simulator with the scenario's parameters; waits until the recorder has matched every
-topic; starts the simulation; waits for its end time; stops every process (also on Ctrl-C or
-when a node dies) and prints the bag's path and a one-line summary.
+Starts the recorder and the nodes of the scenario's plan (a mobile robot: path publisher, encoder
+emulator, odometry, path tracker and simulator; a manipulator: trajectory publisher, joint
+controller and arm simulator) with the scenario's parameters; waits until the recorder has
+matched every topic; starts the simulation; waits for its end time; stops every process (also
+on Ctrl-C or when a node dies) and prints the bag's path and a one-line summary.
 """
 import argparse
 import dataclasses
@@ -23,7 +24,7 @@ from rclpy.executors import SingleThreadedExecutor
 from rclpy.qos import QoSProfile, ReliabilityPolicy
 from rclpy.signals import SignalHandlerOptions
 from robotica_sim.process_supervisor import child_environment, ProcessSupervisor
-from robotica_sim.run_plan import NodeSpec, plan_run, RECORDED_TOPICS
+from robotica_sim.run_plan import NodeSpec, plan_run, recorded_topics
 from robotica_sim.run_summary import summarize_bag
 from robotica_sim.scenario import load_scenario, ScenarioError
 from rosgraph_msgs.msg import Clock
@@ -34,11 +35,12 @@ HELP = 'run a scenario and record it'
 EPILOG = """examples:
   robotica run demo                        the shipped demo scenario, lockstep
   robotica run demo --pacing realtime      watch it at wall-clock speed
+  robotica run ej8_2                       Ej. 8.2: computed torque with a wrong model
   robotica run my_scenario.yaml --json     machine-readable summary on stdout
 """
 MATCH_SETTLE = 0.5   # [s] wall clock, see _wait_ready
-STOP_ORDER = ['simulator', 'path_tracker', 'odometry', 'encoder_emulator', 'path_publisher',
-              'recorder']
+STOP_ORDER = ['simulator', 'path_tracker', 'joint_controller', 'odometry', 'encoder_emulator',
+              'path_publisher', 'joint_trajectory_publisher', 'recorder']
 
 
 class RunFailed(Exception):
@@ -97,7 +99,7 @@ def _prepare(args: argparse.Namespace, scenario, run_dir: Path) -> list[NodeSpec
     params_file = run_dir / 'params.yaml'
     shutil.copy(scenario.source, scenario_copy)
     recorder = NodeSpec('robotica_sim', 'recorder', 'recorder', {
-        'output': str(bag), 'topics': list(RECORDED_TOPICS),
+        'output': str(bag), 'topics': list(recorded_topics(scenario)),
         'metadata_files': [str(scenario_copy), str(params_file)]})
     nodes = [recorder] + nodes
     params = {}

@@ -1,0 +1,203 @@
+"""
+Joint controller node: a control law of book ch. 8 closing the loop over topics.
+
+Each ``joint_states`` message (sensor_msgs/JointState, matched to ``joint_names`` by name) is
+answered with one torque command on ``joint_torques`` (std_msgs/Float64MultiArray, joint order,
+[N m | N]) and one ``~/controller_state`` (robotica_msgs/JointControllerState: reference, error,
+torque; stamped with the state's time). Answering each state exactly once is what a lockstep
+simulation needs.
+
+The law is chosen by ``law`` and lives in :mod:`robotica_ctrl.joint_control`:
+
+* ``pid``: decoupled PID per joint (8.10), anti-windup, saturation, filtered derivative; gains
+  ``pid.*``.
+* ``computed_torque``: ``tau = M̂(q)(q_d'' + K_v e' + K_p e [+ K_i ∫e]) + V̂ + Ĝ [+ F̂]``
+  (8.27)-(8.37) on the model given by ``robot`` or ``dyn_table`` (give a deliberately wrong
+  table to study model errors, Ej. 8.2); gains ``computed_torque.*``.
+
+The reference comes from ``~/joint_trajectory`` (trajectory_msgs/JointTrajectory, transient
+local): its points are interpolated as ros2_controllers' joint trajectory controller does
+(quintic, cubic or linear Hermite,
+:class:`~robotica_ctrl.trajectory.sampled_trajectory.SampledTrajectory`).
+A trajectory stamped 0 starts at the time of the next joint state. Without a trajectory the
+controller holds the first measured position. A state with missing or non-finite joints is not
+answered (a simulator then brakes on its stale command) and the reason is logged.
+"""
+import math
+
+import numpy as np
+from rclpy.node import Node
+from rclpy.parameter import Parameter
+from robotica_ctrl.joint_control import (ComputedTorque, ComputedTorqueGains, DecoupledPID,
+                                         JointControlLaw, JointReference, JointState, PIDGains)
+from robotica_ctrl.trajectory.sampled_trajectory import SampledTrajectory
+from robotica_kin.nodes.convert import seconds_to_stamp, stamp_to_seconds
+from robotica_kin.nodes.dh_messages import dynamic_robot_from_parameters
+from robotica_kin.nodes.entry_point import run_node
+from robotica_kin.nodes.parameters import declare
+from robotica_kin.nodes.qos import COMMAND_QOS, LATCHED_QOS, STREAM_PUB_QOS, STREAM_SUB_QOS
+from robotica_kin.robots import ROBOT_NAMES
+from robotica_msgs.msg import JointControllerState
+from sensor_msgs.msg import JointState as JointStateMsg
+from std_msgs.msg import Float64MultiArray
+from trajectory_msgs.msg import JointTrajectory
+
+LAWS = ('pid', 'computed_torque')
+GAINS = {
+    'pid': {'kp': ([25.0], 'K_p [N m/rad] per joint (one value: all joints), book (8.10)'),
+            'kv': ([10.0], 'K_v [N m s/rad] per joint'),
+            'ki': ([0.0], 'K_i [N m/(rad s)] per joint'),
+            'tau_max': ([math.inf], 'Torque saturation [N m] per joint, > 0'),
+            'integral_max': ([math.inf], 'Clamp of the error integral [rad s] (anti-windup)'),
+            'derivative_time_constant': ([0.0], "T_f [s] of the low-pass filter of e'; 0: none")},
+    'computed_torque': {
+        'kp': ([25.0], 'K_p [1/s^2] per joint, book (8.30); omega_n = sqrt(K_p) (8.22)'),
+        'kv': ([10.0], 'K_v [1/s] per joint; damping K_v / (2 sqrt(K_p)) (8.23)'),
+        'ki': ([0.0], 'K_i [1/s^3] per joint, PID variant (8.36)'),
+        'integral_max': ([math.inf], 'Clamp of the error integral [rad s] (anti-windup)')},
+}
+
+
+def _gain(values: list[float]) -> float | np.ndarray:
+    return values[0] if len(values) == 1 else np.array(values)
+
+
+class JointControllerNode(Node):
+    """ROS shell around a :class:`~robotica_ctrl.joint_control.JointControlLaw`."""
+
+    def __init__(self) -> None:
+        super().__init__('joint_controller')
+        self._law_name = declare(self, 'law', 'computed_torque',
+                                 f'Control law: one of {LAWS}', read_only=True)
+        if self._law_name not in LAWS:
+            raise ValueError(f'law must be one of {LAWS}, got {self._law_name!r}')
+        robot = declare(self, 'robot', 'puma560',
+                        f"The controller's model, one of {ROBOT_NAMES} with dynamics; empty: "
+                        'use dyn_table', read_only=True)
+        dyn_table = declare(self, 'dyn_table', Parameter.Type.DOUBLE_ARRAY,
+                            "The controller's model as a HEMERO dyn table (n x 20: DH row, mass, "
+                            'centre of mass, inertia, Jm, G, B, Tc+, Tc-), flattened row-major; '
+                            "used when robot is ''", read_only=True)
+        names = declare(self, 'joint_names', Parameter.Type.STRING_ARRAY,
+                        "Joint order of states and torques; default the model's "
+                        '(joint_1 … joint_n)', read_only=True)
+        self._robot = dynamic_robot_from_parameters(robot, dyn_table, names)
+        grav = declare(self, 'gravity', [0.0, 0.0, -9.81],
+                       'Gravity acceleration [m/s^2] in the base frame {0} for the model',
+                       read_only=True)
+        use_friction = declare(self, 'use_friction', True,
+                               "Compensate the model's friction F̂ (computed_torque)",
+                               read_only=True)
+        self._first_period = declare(self, 'first_period', 1e-3,
+                                     'dt [s] of the first step (no previous state yet)',
+                                     low=1e-6, high=1.0, read_only=True)
+        gains = {name: _gain(declare(self, f'{self._law_name}.{name}', default, description,
+                                     read_only=True))
+                 for name, (default, description) in GAINS[self._law_name].items()}
+        self._law: JointControlLaw
+        if self._law_name == 'pid':
+            self._law = DecoupledPID(PIDGains(**gains))
+        else:
+            self._law = ComputedTorque(self._robot, ComputedTorqueGains(**gains), grav,
+                                       use_friction=use_friction)
+        self._names = list(self._robot.joint_names)
+        self._trajectory: SampledTrajectory | None = None
+        self._trajectory_start: float | None = None
+        self._hold: np.ndarray | None = None
+        self._previous_time: float | None = None
+        self._torque_pub = self.create_publisher(Float64MultiArray, 'joint_torques', COMMAND_QOS)
+        self._state_pub = self.create_publisher(JointControllerState, '~/controller_state',
+                                                STREAM_PUB_QOS)
+        self.create_subscription(JointTrajectory, '~/joint_trajectory', self._on_trajectory,
+                                 LATCHED_QOS)
+        self.create_subscription(JointStateMsg, 'joint_states', self._on_joint_states,
+                                 STREAM_SUB_QOS)
+        self.get_logger().info(f'law {self._law_name} on model {self._robot.name!r}, joints '
+                               f'{self._names}')
+
+    # -- reference --------------------------------------------------------------------------
+    def _on_trajectory(self, msg: JointTrajectory) -> None:
+        try:
+            order = [list(msg.joint_names).index(name) for name in self._names]
+        except ValueError:
+            self.get_logger().error(f'trajectory refused: joints {list(msg.joint_names)} do not '
+                                    f'cover {self._names}')
+            return
+        points = msg.points
+        try:
+            if not points:
+                raise ValueError('no points')
+            times = [stamp_to_seconds(p.time_from_start) for p in points]
+            columns = []
+            for field in ('positions', 'velocities', 'accelerations'):
+                sizes = {len(getattr(p, field)) for p in points}
+                if sizes == {0}:
+                    break
+                if sizes != {len(msg.joint_names)}:
+                    raise ValueError(f'every point needs {len(msg.joint_names)} {field}')
+                columns.append(np.array([getattr(p, field) for p in points])[:, order])
+            if not columns:
+                raise ValueError('points have no positions')
+            trajectory = SampledTrajectory(times, *columns)
+        except ValueError as err:
+            self.get_logger().error(f'trajectory refused: {err}; keeping the previous reference')
+            return
+        self._trajectory = trajectory
+        stamp = stamp_to_seconds(msg.header.stamp)
+        self._trajectory_start = stamp if stamp > 0.0 else None
+        self.get_logger().info(
+            f'trajectory of {len(points)} points over {trajectory.end_time:.3f} s received; '
+            + (f'starts at t = {stamp:.3f} s' if stamp > 0.0 else 'starts now'))
+
+    def _reference(self, t: float, q: np.ndarray) -> JointReference:
+        if self._trajectory is None:
+            if self._hold is None:
+                self._hold = q.copy()
+                self.get_logger().info(f'no trajectory yet: holding q = {np.round(q, 4).tolist()}')
+            return JointReference(self._hold)
+        if self._trajectory_start is None:
+            self._trajectory_start = t
+        return self._trajectory.sample(t - self._trajectory_start)
+
+    # -- the control step -----------------------------------------------------------------
+    def _on_joint_states(self, msg: JointStateMsg) -> None:
+        index = {name: i for i, name in enumerate(msg.name)}
+        missing = [j for j in self._names
+                   if j not in index or index[j] >= min(len(msg.position), len(msg.velocity))]
+        if missing:
+            self.get_logger().warn(f'joint_states lacks position or velocity of {missing}; '
+                                   'not answered', throttle_duration_sec=1.0)
+            return
+        rows = [index[j] for j in self._names]
+        q = np.array([msg.position[i] for i in rows])
+        qd = np.array([msg.velocity[i] for i in rows])
+        if not (np.isfinite(q).all() and np.isfinite(qd).all()):
+            self.get_logger().warn('non-finite joint state; not answered',
+                                   throttle_duration_sec=1.0)
+            return
+        t = stamp_to_seconds(msg.header.stamp)
+        if self._previous_time is not None and t < self._previous_time:
+            self.get_logger().warn(f'time went back from {self._previous_time:.3f} s to '
+                                   f'{t:.3f} s: controller reset')
+            self._law.reset()
+            self._previous_time = None
+        dt = self._first_period if self._previous_time is None or t == self._previous_time \
+            else t - self._previous_time
+        self._previous_time = t
+        reference = self._reference(t, q)
+        tau = self._law.update(reference, JointState(q, qd), dt)
+        self._torque_pub.publish(Float64MultiArray(data=tau.tolist()))
+        state = JointControllerState(
+            law=self._law_name, joint_names=self._names,
+            reference_position=np.asarray(reference.q_d).tolist(),
+            reference_velocity=np.asarray(reference.qd_d).tolist(),
+            reference_acceleration=np.asarray(reference.qdd_d).tolist(),
+            position_error=(reference.q_d - q).tolist(),
+            velocity_error=(reference.qd_d - qd).tolist(), effort=tau.tolist())
+        state.header.stamp = seconds_to_stamp(t)
+        self._state_pub.publish(state)
+
+
+def main(args=None) -> None:
+    """Run the joint controller until Ctrl-C."""
+    run_node(JointControllerNode, args)

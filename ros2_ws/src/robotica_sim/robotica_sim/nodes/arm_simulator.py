@@ -1,0 +1,161 @@
+"""
+Arm simulator node: a manipulator's dynamics integrated at a fixed step; it owns the time.
+
+The plant is :class:`~robotica_sim.arm_simulation.ArmSimulation` (Pinocchio ABA, RK4, book
+§5.7): the robot ``robot`` by name or a HEMERO ``dyn_table``, with friction, torque saturation
+``tau_max``, joint stops, ``unmodelled_viscous`` friction the controller does not know (App. A)
+and a payload grasped at ``payload.time`` (Ej. 8.4).
+
+Subscribes ``joint_torques`` (std_msgs/Float64MultiArray, one torque [N m] or force [N] per
+joint in ``joint_names`` order, as ros2_controllers' effort controllers take them). Publishes
+``joint_states`` (sensor_msgs/JointState: position, velocity and the applied effort, stamped
+with the simulated time), ``/clock`` and ``~/status``. Pacing and the end of the run:
+:class:`~robotica_sim.nodes.stepped_simulator.SteppedSimulatorNode`.
+
+Safe stop: while no valid command newer than ``cmd_timeout`` exists (none yet, a stale one, or a
+refused one: wrong size, NaN), the joint brakes hold the arm (velocities zero, positions held);
+every change of that condition is logged.
+"""
+import numpy as np
+from rclpy.parameter import Parameter
+from robotica_kin.dynamics import DEFAULT_GRAVITY
+from robotica_kin.nodes.convert import seconds_to_stamp
+from robotica_kin.nodes.dh_messages import dynamic_robot_from_parameters
+from robotica_kin.nodes.entry_point import run_node
+from robotica_kin.nodes.parameters import declare
+from robotica_kin.nodes.qos import COMMAND_QOS, STREAM_PUB_QOS
+from robotica_kin.robots import ROBOT_NAMES
+from robotica_sim.arm_simulation import ArmSimulation, ArmSimulationParams
+from robotica_sim.nodes.stepped_simulator import SteppedSimulatorNode
+from sensor_msgs.msg import JointState
+from std_msgs.msg import Float64MultiArray
+
+
+def _per_joint(values: list[float] | None, n: int, name: str) -> tuple[float, ...]:
+    """Return () for no values, n values as given, or one value repeated n times."""
+    values = list(values or [])
+    if len(values) == 1:
+        values = values * n
+    if values and len(values) != n:
+        raise ValueError(f'{name} needs 1 or {n} values, got {len(values)}')
+    return tuple(float(v) for v in values)
+
+
+class ArmSimulatorNode(SteppedSimulatorNode):
+    """Thin ROS shell around :class:`ArmSimulation`; run it with :meth:`run`."""
+
+    def __init__(self) -> None:
+        super().__init__('arm_simulator', default_step_period=1e-3,
+                         command_topic='joint_torques')
+        robot = declare(self, 'robot', 'puma560',
+                        f'Built-in robot, one of {ROBOT_NAMES} with dynamics; empty: use '
+                        'dyn_table', read_only=True)
+        dyn_table = declare(self, 'dyn_table', Parameter.Type.DOUBLE_ARRAY,
+                            'HEMERO dyn table (n x 20: DH row, mass, centre of mass, inertia, '
+                            "Jm, G, B, Tc+, Tc-), flattened row-major; used when robot is ''",
+                            read_only=True)
+        names = declare(self, 'joint_names', Parameter.Type.STRING_ARRAY,
+                        "Joint names, in torque order; default the model's (joint_1 … joint_n)",
+                        read_only=True)
+        limits = declare(self, 'joint_limits', Parameter.Type.DOUBLE_ARRAY,
+                         "[low_1, high_1, …] [rad | m]; default the model's", read_only=True)
+        self._robot = dynamic_robot_from_parameters(robot, dyn_table, names, limits)
+        n = self._robot.n
+        q0 = declare(self, 'initial_positions', [0.0] * n, 'q(0) [rad | m]', read_only=True)
+        qd0 = declare(self, 'initial_velocities', [0.0] * n, "q'(0) [rad/s | m/s]",
+                      read_only=True)
+        params = ArmSimulationParams(
+            step_period=self.step_period,
+            gravity=tuple(declare(self, 'gravity', list(DEFAULT_GRAVITY),
+                                  'Gravity acceleration [m/s^2] in the base frame {0}',
+                                  read_only=True)),
+            tau_max=_per_joint(declare(self, 'tau_max', Parameter.Type.DOUBLE_ARRAY,
+                                       'Torque saturation [N m] (1 or n values); default none',
+                                       read_only=True), n, 'tau_max'),
+            unmodelled_viscous=_per_joint(
+                declare(self, 'unmodelled_viscous', Parameter.Type.DOUBLE_ARRAY,
+                        'Viscous friction [N m s] per joint unknown to the controller (App. A: '
+                        '0.1 on joint 1); default none', read_only=True), n,
+                'unmodelled_viscous'),
+            respect_limits=declare(self, 'respect_limits', True,
+                                   'Stop the joints at their limits', read_only=True))
+        self._payload_mass = declare(self, 'payload.mass', 0.0,
+                                     'Mass grasped at payload.time [kg]; 0: none (Ej. 8.4: 2)',
+                                     low=0.0, high=1e4, read_only=True)
+        self._payload_com = declare(self, 'payload.com', [0.0, 0.0, 0.0],
+                                    'Its position [m] in the last link frame {n}',
+                                    read_only=True)
+        self._payload_time = declare(self, 'payload.time', 0.0,
+                                     'Simulated time [s] of the grasp (Ej. 8.4: 10)', low=0.0,
+                                     high=1e7, read_only=True)
+        self._cmd_timeout = declare(self, 'cmd_timeout', 0.01,
+                                    'A command older than this [s, simulated] engages the brakes',
+                                    low=1e-4, high=60.0, read_only=True)
+        self._frame = declare(self, 'base_frame_id', 'link_0', 'frame_id of joint_states',
+                              read_only=True)
+        self._sim = ArmSimulation(self._robot, params, q0, qd0)
+        self._names = list(self._robot.joint_names)
+        self._torque: np.ndarray | None = None
+        self._torque_time = -np.inf
+        self._braking = False
+        self._payload_pending = self._payload_mass > 0.0
+        if len(self._payload_com) != 3 or not np.isfinite(self._payload_com).all():
+            raise ValueError(f'payload.com must be 3 finite values [m], got {self._payload_com}')
+        self._joints_pub = self.create_publisher(JointState, 'joint_states', STREAM_PUB_QOS)
+        self.create_subscription(Float64MultiArray, 'joint_torques', self._on_torques,
+                                 COMMAND_QOS)
+        self.get_logger().info(f'robot {self._robot.name!r}, {n} joints {self._names}, '
+                               f'step {self.step_period} s')
+
+    @property
+    def publishers_to_flush(self) -> list:
+        """Return the clock, status and joint-state publishers."""
+        return super().publishers_to_flush + [self._joints_pub]
+
+    # -- callbacks: store and convert only ------------------------------------------------
+    def _on_torques(self, msg: Float64MultiArray) -> None:
+        self.note_answer()
+        torque = np.asarray(msg.data, dtype=np.float64)
+        if torque.shape != (self._robot.n,) or not np.isfinite(torque).all():
+            self._torque = None
+            self.get_logger().warn(f'refused command: need {self._robot.n} finite torques, got '
+                                   f'{list(msg.data)}; braking', throttle_duration_sec=1.0)
+            return
+        self._torque = torque
+        self._torque_time = self.sim_time
+
+    # -- the plant ------------------------------------------------------------------------
+    def publish_plant(self, t: float) -> None:
+        """Publish the joint positions, velocities and applied torques at time ``t`` [s]."""
+        msg = JointState(name=self._names, position=self._sim.q.tolist(),
+                         velocity=self._sim.qd.tolist(),
+                         effort=self._sim.applied_torque.tolist())
+        msg.header.stamp = seconds_to_stamp(t)
+        msg.header.frame_id = self._frame
+        self._joints_pub.publish(msg)
+
+    def step_plant(self) -> None:
+        """Advance the arm one step with the newest torque, or with the brakes on."""
+        t = self.sim_time
+        if self._payload_pending and t >= self._payload_time - 1e-12:
+            self._sim.add_payload(self._payload_mass, self._payload_com)
+            self._payload_pending = False
+            self.get_logger().info(f'payload of {self._payload_mass} kg grasped at t = {t:.3f} s')
+        braking = self._torque is None or t - self._torque_time > self._cmd_timeout + 1e-12
+        if braking != self._braking:
+            if braking:
+                self.get_logger().warn(f'no valid command newer than {self._cmd_timeout} s at '
+                                       f't = {t:.3f} s: brakes on')
+            else:
+                self.get_logger().info(f'commands at t = {t:.3f} s: brakes off')
+            self._braking = braking
+        if braking:
+            self.stale_steps += 1
+            self._sim.step_braked()
+        else:
+            self._sim.step(self._torque)
+
+
+def main(args=None) -> None:
+    """Run the arm simulator until its end time or Ctrl-C."""
+    run_node(ArmSimulatorNode, args, run=ArmSimulatorNode.run)

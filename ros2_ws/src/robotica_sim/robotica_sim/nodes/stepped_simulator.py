@@ -1,0 +1,190 @@
+"""
+The shell every robotica simulator node shares: it owns the time and paces the steps.
+
+A subclass integrates one plant (a mobile robot, a manipulator) and implements
+:meth:`SteppedSimulatorNode.step_plant` and :meth:`SteppedSimulatorNode.publish_plant`; it calls
+:meth:`SteppedSimulatorNode.note_answer` from its command callback. This class declares the
+pacing parameters, publishes ``/clock`` and ``~/status`` (robotica_msgs/SimulatorStatus), offers
+the ``~/start`` service (std_srvs/Trigger) and runs the loop.
+
+Pacing (DESIGN.md, time and recording):
+
+* ``realtime``: one step per ``step_period`` of wall-clock time.
+* ``lockstep``: as fast as possible; step k+1 starts when a command has answered step k, or after
+  ``lockstep.timeout`` wall-clock seconds (counted in ``lockstep_timeouts`` and logged). Until the
+  first answer, step 0 is published again every ``lockstep.timeout`` (discovery of the control loop
+  may still be going on), for at most ``lockstep.start_timeout``; then the node gives up.
+
+At ``end_time`` the node publishes a final status and exits with code 0.
+"""
+from abc import abstractmethod
+import math
+import time
+
+from rclpy.duration import Duration
+from rclpy.executors import Executor
+from rclpy.node import Node
+from robotica_kin.nodes.convert import seconds_to_stamp
+from robotica_kin.nodes.parameters import declare
+from robotica_kin.nodes.qos import STREAM_PUB_QOS
+from robotica_msgs.msg import SimulatorStatus
+from rosgraph_msgs.msg import Clock
+from std_srvs.srv import Trigger
+
+PACING_MODES = ('realtime', 'lockstep')
+
+
+class SteppedSimulatorNode(Node):
+    """A node that steps a simulated plant at a fixed period; run it with :meth:`run`."""
+
+    def __init__(self, name: str, *, default_step_period: float, command_topic: str) -> None:
+        super().__init__(name)
+        self.step_period = declare(self, 'step_period', default_step_period,
+                                   'Simulated time per step [s] (publishing period)',
+                                   low=1e-4, high=1.0, read_only=True)
+        self._pacing = declare(self, 'pacing', 'realtime',
+                               'realtime (wall-clock paced) or lockstep (as fast as the '
+                               'controller answers)', read_only=True)
+        if self._pacing not in PACING_MODES:
+            raise ValueError(f'pacing must be one of {PACING_MODES}, got {self._pacing!r}')
+        self._lockstep_timeout = declare(
+            self, 'lockstep.timeout', 1.0,
+            'Wall-clock seconds to wait for the answer to a step before going on',
+            low=1e-3, high=60.0, read_only=True)
+        self._start_timeout = declare(
+            self, 'lockstep.start_timeout', 30.0,
+            'Wall-clock seconds to wait for the first answer (discovery) before giving up',
+            low=0.1, high=600.0, read_only=True)
+        self._end_time = declare(self, 'end_time', 0.0,
+                                 'Simulated time [s] at which the run ends; 0: never',
+                                 low=0.0, high=1e7, read_only=True)
+        self._autostart = declare(self, 'autostart', True,
+                                  'Start stepping at once (else wait for ~/start)',
+                                  read_only=True)
+        self._status_period = declare(self, 'status_period', 1.0,
+                                      'Period of ~/status [s, simulated]', low=1e-3, high=1e3,
+                                      read_only=True)
+        self._command_topic = command_topic
+        self._clock_pub = self.create_publisher(Clock, '/clock', STREAM_PUB_QOS)
+        self._status_pub = self.create_publisher(SimulatorStatus, '~/status', STREAM_PUB_QOS)
+        self.create_service(Trigger, '~/start', self._on_start)
+        self._started = False
+        self._answers = 0
+        self._timeouts = 0
+        self.stale_steps = 0
+        self._steps = 0
+        self._next_status = 0.0
+        self._wall_start = 0.0
+
+    # -- what a plant provides --------------------------------------------------------------
+    @abstractmethod
+    def step_plant(self) -> None:
+        """Advance the plant by one ``step_period`` with the newest command."""
+
+    @abstractmethod
+    def publish_plant(self, t: float) -> None:
+        """Publish the plant's state at simulated time ``t`` [s] (besides clock and status)."""
+
+    def note_answer(self) -> None:
+        """Count a command received: in lockstep it releases the next step."""
+        self._answers += 1
+
+    @property
+    def sim_time(self) -> float:
+        """Return the simulated time [s] (steps times the step period)."""
+        return round(self._steps * self.step_period, 12)
+
+    @property
+    def publishers_to_flush(self) -> list:
+        """Return the publishers whose last messages must be acknowledged before exiting."""
+        return [self._clock_pub, self._status_pub]
+
+    # -- callbacks ----------------------------------------------------------------------------
+    def _on_start(self, request: Trigger.Request, response: Trigger.Response
+                  ) -> Trigger.Response:
+        response.success = not self._started
+        response.message = 'started' if not self._started else 'already running'
+        self._started = True
+        return response
+
+    # -- publishing -----------------------------------------------------------------------
+    def _publish_state(self) -> None:
+        t = self.sim_time
+        self._clock_pub.publish(Clock(clock=seconds_to_stamp(t)))
+        self.publish_plant(t)
+        if t >= self._next_status - 1e-9:
+            self._publish_status(finished=False)
+            self._next_status += self._status_period
+
+    def _publish_status(self, finished: bool) -> None:
+        wall = time.monotonic() - self._wall_start
+        status = SimulatorStatus(step=self._steps, lockstep_timeouts=self._timeouts,
+                                 stale_command_stops=self.stale_steps, finished=finished,
+                                 real_time_factor=self.sim_time / wall if wall > 0 else 0.0)
+        status.header.stamp = seconds_to_stamp(self.sim_time)
+        self._status_pub.publish(status)
+
+    # -- the stepping loop ------------------------------------------------------------------
+    def _spin_until(self, executor: Executor, done, deadline: float) -> bool:
+        """Spin until ``done()`` or the wall-clock ``deadline``; return ``done()``."""
+        while not done():
+            remaining = deadline - time.monotonic()
+            if remaining <= 0.0:
+                break
+            executor.spin_once(timeout_sec=min(remaining, 1.0))
+        return done()
+
+    def _wait_for_first_answer(self, executor: Executor) -> bool:
+        give_up = time.monotonic() + self._start_timeout
+        while time.monotonic() < give_up:
+            seen = self._answers
+            self._publish_state()
+            deadline = min(give_up, time.monotonic() + self._lockstep_timeout)
+            if self._spin_until(executor, lambda: self._answers > seen, deadline):
+                return True
+            self.get_logger().info(
+                f'waiting for the controller to answer step 0 on {self._command_topic}',
+                throttle_duration_sec=5.0)
+        return False
+
+    def run(self, executor: Executor) -> int:
+        """Step until ``end_time`` (or shutdown); return the process exit code."""
+        self._spin_until(executor, lambda: self._started or self._autostart, math.inf)
+        self.get_logger().info(f'started: pacing {self._pacing}, step {self.step_period} s, '
+                               f'end time {self._end_time or "none"} s')
+        self._wall_start = time.monotonic()
+        lockstep = self._pacing == 'lockstep'
+        if lockstep:
+            if not self._wait_for_first_answer(executor):
+                self.get_logger().error(
+                    f'no command on {self._command_topic} within {self._start_timeout} s: is a '
+                    'controller running and connected? Stopping.')
+                return 1
+        else:
+            self._publish_state()
+        while self._end_time == 0.0 or self.sim_time < self._end_time - 1e-9:
+            if lockstep:
+                seen = self._answers
+            else:
+                target = self._wall_start + (self._steps + 1) * self.step_period
+                self._spin_until(executor, lambda: False, target)
+            self.step_plant()
+            self._steps += 1
+            self._publish_state()
+            if lockstep:
+                deadline = time.monotonic() + self._lockstep_timeout
+                if not self._spin_until(executor, lambda: self._answers > seen, deadline):
+                    self._timeouts += 1
+                    self.get_logger().warn(
+                        f'lockstep: no answer to step {self._steps} within '
+                        f'{self._lockstep_timeout} s ({self._timeouts} so far)',
+                        throttle_duration_sec=1.0)
+        self._publish_status(finished=True)
+        for pub in self.publishers_to_flush:
+            pub.wait_for_all_acked(Duration(seconds=2.0))
+        wall = time.monotonic() - self._wall_start
+        self.get_logger().info(
+            f'finished at t = {self.sim_time:.3f} s after {self._steps} steps in '
+            f'{wall:.2f} s wall (real-time factor {self.sim_time / max(wall, 1e-9):.1f}); '
+            f'lockstep timeouts {self._timeouts}, stale-command steps {self.stale_steps}')
+        return 0
