@@ -21,7 +21,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 import pinocchio as pin
 from robotica_kin.dh import as_dyn_model, DHModel
-from robotica_kin.dynamics import DEFAULT_GRAVITY, friction, set_gravity
+from robotica_kin.dynamics import DEFAULT_GRAVITY, JointFriction, set_gravity
 
 __all__ = ['ArmSimulation', 'ArmSimulationParams']
 
@@ -91,8 +91,7 @@ class ArmSimulation:
         self._tau_max = np.array(params.tau_max) if params.tau_max else np.full(n, np.inf)
         self._viscous = (np.array(params.unmodelled_viscous) if params.unmodelled_viscous
                          else np.zeros(n))
-        table = robot.dyn     # never None after as_dyn_model
-        self._has_friction = table is not None and bool(np.any(table[:, 17:20] != 0.0))
+        self._friction = JointFriction(robot)
         self.reset(q0, qd0)
 
     def reset(self, q0: ArrayLike, qd0: ArrayLike) -> None:
@@ -114,8 +113,8 @@ class ArmSimulation:
     def _acceleration(self, q: NDArray[np.float64], qd: NDArray[np.float64],
                       tau: NDArray[np.float64]) -> NDArray[np.float64]:
         load = tau - self._viscous * qd
-        if self._has_friction:
-            load = load - friction(self.robot, qd)
+        if not self._friction.is_zero:
+            load = load - self._friction(qd)
         return pin.aba(self._model, self._data, q, qd, load)
 
     def step(self, tau: ArrayLike) -> NDArray[np.float64]:

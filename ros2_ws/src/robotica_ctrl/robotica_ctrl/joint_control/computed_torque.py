@@ -7,14 +7,18 @@ variant ``tau_r = q_d'' + K_v e' + K_p e + K_i ∫e dt`` (8.36). With an exact m
 ``e'' + K_v e' + K_p e = 0`` per joint (8.35). The model (M̂, V̂, Ĝ, F̂) is a robot with dynamics
 for :mod:`robotica_kin.dynamics`: a ``DHModel`` with a ``dyn`` table or a raw (n, 20) HEMERO
 table; a deliberately wrong model (Ej. 8.2) is simply another ``dyn`` table.
+
+``M̂ tau_r + V̂ + Ĝ`` is the inverse dynamics at the acceleration ``tau_r``: one recursive
+Newton-Euler pass (Pinocchio's RNEA, motor inertia included), not three separate terms.
 """
 
 from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from robotica_kin.dh import DHModel
-from robotica_kin.dynamics import coriolis, friction, gravity, inertia
+import pinocchio as pin
+from robotica_kin.dh import as_dyn_model, DHModel
+from robotica_kin.dynamics import JointFriction, set_gravity
 
 from .law import gain_field, JointControlLaw, JointReference, JointState, per_joint
 
@@ -79,9 +83,12 @@ class ComputedTorque(JointControlLaw):
                  grav: ArrayLike | None = None, *, use_friction: bool = True) -> None:
         if gains is not None and not isinstance(gains, ComputedTorqueGains):
             raise ValueError(f'gains must be ComputedTorqueGains, got {type(gains).__name__}')
-        n = model.n if isinstance(model, DHModel) else int(np.shape(model)[0])
-        # Checks the model (dynamics present, (n, 20)) and grav once, here.
-        gravity(model, np.zeros(n), grav)
+        robot = as_dyn_model(model)     # checks the model: dynamics present, (n, 20)
+        n = robot.n
+        self._pin_model = pin.Model(robot.pinocchio_model)
+        set_gravity(self._pin_model, grav)
+        self._pin_data = self._pin_model.createData()
+        self._friction = JointFriction(robot)
         self.model = model
         self.n = n
         self.gains = ComputedTorqueGains() if gains is None else gains
@@ -125,8 +132,7 @@ class ComputedTorque(JointControlLaw):
             self._integral = np.clip(self._integral + e * dt, -self._integral_max,
                                      self._integral_max)
             tau_r = tau_r + self._ki * self._integral
-        tau = inertia(self.model, q) @ tau_r + coriolis(self.model, q, qd)
-        tau = tau + gravity(self.model, q, self.grav)
-        if self.use_friction:
-            tau = tau + friction(self.model, qd)
-        return np.asarray(tau, dtype=np.float64)
+        tau = pin.rnea(self._pin_model, self._pin_data, q, qd, tau_r)
+        if self.use_friction and not self._friction.is_zero:
+            tau = tau + self._friction(qd)
+        return np.array(tau, dtype=np.float64)

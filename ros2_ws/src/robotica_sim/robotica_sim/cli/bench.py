@@ -1,9 +1,12 @@
 """
 Benchmarks of robotica, printed as a table (Markdown, ready for the README) or JSON.
 
-``robotica bench kin`` times ``fkine``, ``jacob0`` and ``ikine`` of the PUMA 560 and the planar
-3R per call and batched, next to a plain NumPy baseline (the product of Craig's link matrices,
-and HEMERO's pseudo-inverse ``ikine``) measured in the same run; see
+``robotica bench arm`` measures the manipulator loop (PUMA 560 at 1 kHz under computed torque):
+the pure core, the DDS round trip that bounds a lockstep loop, and the full ROS loop; see
+:mod:`robotica_sim.arm_benchmark`. ``robotica bench kin`` times ``fkine``, ``jacob0`` and
+``ikine`` of the PUMA 560 and the planar 3R per call and batched, next to a plain NumPy
+baseline (the product of Craig's link matrices, and HEMERO's pseudo-inverse ``ikine``) measured
+in the same run; see
 :mod:`robotica_sim.kinematics_benchmark`.
 """
 import argparse
@@ -11,21 +14,31 @@ import dataclasses
 import json
 import sys
 
+from robotica_sim.arm_benchmark import (ArmBenchmarkRow, core_benchmark, loop_benchmark,
+                                        round_trip_benchmark)
 from robotica_sim.kinematics_benchmark import BenchmarkRow, run_kinematics_benchmark
 
-HELP = 'measure the speed of the kinematics (robotica bench kin)'
+HELP = 'measure the speed of the kinematics or of the arm loop (robotica bench kin|arm)'
 EPILOG = """examples:
   robotica bench kin                       1000 configurations per robot, Markdown table
   robotica bench kin --count 200 --json    quicker, machine-readable
+  robotica bench arm                       core, DDS round trip and ROS loop of the PUMA 560
+  robotica bench arm --loop-duration 0     without the (slow) full ROS loop
 """
-SUITES = ('kin',)
+SUITES = ('kin', 'arm')
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Add the arguments of ``robotica bench``."""
-    parser.add_argument('suite', choices=SUITES, help='what to measure: kin = kinematics')
+    parser.add_argument('suite', choices=SUITES,
+                        help='what to measure: kin = kinematics, arm = the manipulator loop')
     parser.add_argument('--count', type=int, default=1000,
-                        help='random configurations per robot (default 1000)')
+                        help='kin: random configurations per robot; arm: simulated steps of '
+                        'the core and DDS round trips (default 1000; arm: at least 5000 steps '
+                        'are used for the core)')
+    parser.add_argument('--loop-duration', type=float, default=5.0,
+                        help='arm: simulated seconds of the full ROS loop; 0 skips it '
+                        '(default 5)')
     parser.add_argument('--baseline-ik-count', type=int, default=100,
                         help='poses given to the slow baseline ikine (default 100)')
     parser.add_argument('--seed', type=int, default=0, help='seed of the configurations')
@@ -56,9 +69,31 @@ def main(args: argparse.Namespace) -> int:
         if show:
             print(f'robotica bench: {message} ...', file=sys.stderr, flush=True)
 
+    if args.suite == 'arm':
+        return _arm(args, progress)
     rows = run_kinematics_benchmark(args.count, args.baseline_ik_count, args.seed, progress)
     if args.json:
         print(json.dumps([dataclasses.asdict(row) for row in rows], indent=2))
     else:
         print(format_table(rows))
+    return 0
+
+
+def _arm(args: argparse.Namespace, progress) -> int:
+    if args.loop_duration < 0.0:
+        print('robotica bench: --loop-duration must be >= 0', file=sys.stderr)
+        return 2
+    progress('core: simulator and controller in one loop')
+    rows: list[ArmBenchmarkRow] = core_benchmark(max(args.count, 5000))
+    progress('DDS round trips through an echo process')
+    rows += round_trip_benchmark(args.count)
+    if args.loop_duration > 0.0:
+        progress(f'full ROS loop, {args.loop_duration:g} s simulated')
+        rows += loop_benchmark(args.loop_duration)
+    if args.json:
+        print(json.dumps([dataclasses.asdict(row) for row in rows], indent=2))
+    else:
+        lines = ['| what | value | how |', '|---|---:|---|']
+        lines += [f'| {row.what} | {row.value:.1f} {row.unit} | {row.detail} |' for row in rows]
+        print('\n'.join(lines))
     return 0
