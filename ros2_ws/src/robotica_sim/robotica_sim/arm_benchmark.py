@@ -10,7 +10,8 @@ joint, K_p = 25, K_v = 10):
   with the reference sampled each step, as the nodes do; also each part alone [µs per step];
 - **round trip**: the fastest a lockstep loop over DDS can be here: a JointState published by
   this process, answered by an echo process (:func:`run_echo`) with a Float64MultiArray, with
-  the QoS and the executor of the nodes; the RTF limit is step / round trip;
+  the QoS and the executor of the arm nodes (EventsExecutor); the RTF limit is step / round
+  trip;
 - **ROS loop**: ``robotica run puma_computed_torque`` (trajectory publisher, joint controller,
   arm simulator and recorder as separate processes, lockstep), its own RTF.
 """
@@ -95,7 +96,7 @@ def core_benchmark(steps: int = 5000) -> list[ArmBenchmarkRow]:
 def run_echo(count: int) -> None:
     """Answer ``count`` JointState messages with a Float64MultiArray each, then exit."""
     import rclpy
-    from rclpy.executors import SingleThreadedExecutor
+    from rclpy.experimental import EventsExecutor
     from robotica_kin.nodes.qos import COMMAND_QOS, STREAM_SUB_QOS
     from sensor_msgs.msg import JointState as JointStateMsg
     from std_msgs.msg import Float64MultiArray
@@ -110,7 +111,7 @@ def run_echo(count: int) -> None:
         answered[0] += 1
 
     node.create_subscription(JointStateMsg, PING_TOPIC, answer, STREAM_SUB_QOS)
-    executor = SingleThreadedExecutor()
+    executor = EventsExecutor()
     executor.add_node(node)
     deadline = time.monotonic() + 120.0
     while answered[0] < count and time.monotonic() < deadline:
@@ -123,7 +124,7 @@ def run_echo(count: int) -> None:
 def round_trip_benchmark(count: int = 2000) -> list[ArmBenchmarkRow]:
     """Time ``count`` JointState → Float64MultiArray round trips through an echo process."""
     import rclpy
-    from rclpy.executors import SingleThreadedExecutor
+    from rclpy.experimental import EventsExecutor
     from robotica_kin.nodes.qos import COMMAND_QOS, STREAM_PUB_QOS
     from sensor_msgs.msg import JointState as JointStateMsg
     from std_msgs.msg import Float64MultiArray
@@ -137,7 +138,7 @@ def round_trip_benchmark(count: int = 2000) -> list[ArmBenchmarkRow]:
     node.create_subscription(Float64MultiArray, ECHO_TOPIC,
                              lambda _: received.__setitem__(0, received[0] + 1), COMMAND_QOS)
     publisher = node.create_publisher(JointStateMsg, PING_TOPIC, STREAM_PUB_QOS)
-    executor = SingleThreadedExecutor()
+    executor = EventsExecutor()
     executor.add_node(node)
     msg = JointStateMsg(name=[f'joint_{i}' for i in range(1, 7)], position=[0.0] * 6,
                         velocity=[0.0] * 6, effort=[0.0] * 6)
@@ -170,7 +171,7 @@ def round_trip_benchmark(count: int = 2000) -> list[ArmBenchmarkRow]:
     return [
         ArmBenchmarkRow('DDS round trip', median, 'µs',
                         f'median of {count}, p95 {p95:.0f} µs; JointState out, '
-                        'Float64MultiArray back, SingleThreadedExecutor both ends'),
+                        'Float64MultiArray back, EventsExecutor at both ends'),
         ArmBenchmarkRow('lockstep RTF limit', STEP * 1e6 / median, '×',
                         '1 ms step / median round trip'),
     ]

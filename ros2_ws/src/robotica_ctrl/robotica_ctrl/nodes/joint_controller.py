@@ -26,6 +26,7 @@ answered (a simulator then brakes on its stale command) and the reason is logged
 import math
 
 import numpy as np
+from rclpy.experimental import EventsExecutor
 from rclpy.node import Node
 from rclpy.parameter import Parameter
 from robotica_ctrl.joint_control import (ComputedTorque, ComputedTorqueGains, DecoupledPID,
@@ -200,4 +201,4 @@ class JointControllerNode(Node):
 
 def main(args=None) -> None:
     """Run the joint controller until Ctrl-C."""
-    run_node(JointControllerNode, args)
+    run_node(JointControllerNode, args, executor_factory=EventsExecutor)

@@ -17,7 +17,11 @@ from rclpy.signals import SignalHandlerOptions
 
 
 def _spin_forever(node: Node, executor: Executor) -> int:
-    executor.spin()
+    # A loop of spin_once, not executor.spin(): rclpy Jazzy's EventsExecutor.spin() busy-loops
+    # without delivering anything (measured: 0 of 550 messages, 100 % CPU, deaf to shutdown),
+    # while its spin_once delivers, with or without use_sim_time.
+    while rclpy.ok(context=node.context):
+        executor.spin_once(timeout_sec=0.5)
     return 0
 
 

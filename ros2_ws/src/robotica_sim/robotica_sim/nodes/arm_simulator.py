@@ -17,6 +17,7 @@ refused one: wrong size, NaN), the joint brakes hold the arm (velocities zero, p
 every change of that condition is logged.
 """
 import numpy as np
+from rclpy.experimental import EventsExecutor
 from rclpy.parameter import Parameter
 from robotica_kin.dynamics import DEFAULT_GRAVITY
 from robotica_kin.nodes.convert import seconds_to_stamp
@@ -158,4 +159,4 @@ class ArmSimulatorNode(SteppedSimulatorNode):
 
 def main(args=None) -> None:
     """Run the arm simulator until its end time or Ctrl-C."""
-    run_node(ArmSimulatorNode, args, run=ArmSimulatorNode.run)
+    run_node(ArmSimulatorNode, args, run=ArmSimulatorNode.run, executor_factory=EventsExecutor)
