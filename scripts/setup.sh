@@ -17,8 +17,8 @@ RELOCK=0
 say() { printf '[setup %5ss] %s\n' "$SECONDS" "$*" >&2; }
 hash_of() { cat "$@" 2>/dev/null | sha256sum | cut -c1-16; }
 
-# 1. Debian prerequisites (compilers and CMake for robotica_msgs and robotica_ik_native, headers
-#    for the CMake fix, Eigen's headers for robotica_ik_native: the pin wheel does not ship them).
+# 1. Debian prerequisites (compilers and CMake for robotica_msgs and robotica_native, headers
+#    for the CMake fix, Eigen's headers for robotica_native: the pin wheel does not ship them).
 missing=()
 for p in cmake g++ libeigen3-dev python3-dev python3-venv; do
   dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")

@@ -27,7 +27,7 @@ square Jacobian takes plain Newton steps; a mask is defined in {0}, so with one 
 and the rows of ``jacob0`` are used as they are.
 
 The search (starts, iterations, restarts, 2π fitting) runs compiled, one call per pose or
-trajectory: the package ``robotica_ik_native`` (C++ on Pinocchio's API, loaded with ctypes on
+trajectory: the package ``robotica_native`` (C++ on Pinocchio's API, loaded with ctypes on
 the first solve) receives the robot's Pinocchio model (``build_model``, through Pinocchio's
 serialisation) and the seed table once per robot. This module validates the input.
 """
@@ -36,21 +36,19 @@ import ctypes
 from dataclasses import dataclass
 import functools
 import math
-import os
-from typing import Any
 import weakref
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from robotica_kin.dh import as_dh_model, DHModel
 from robotica_kin.forward_kinematics import link_frames
+from robotica_kin.native_library import address, ERROR_SIZE, native_library
 from robotica_kin.pinocchio_model import TOOL_FRAME
 
 __all__ = ['IKError', 'IKResult', 'ikine', 'ikine_solve']
 
 _ROTATION_SCALE = math.sqrt(0.05)  # [m] weight of rotation entries in the seed distance
 _SEED_TABLE_SEED = 20010101      # fixed: the seed table is part of the solver, not of a call
-_ERROR_SIZE = 512                # bytes of the C interface's error message buffer
 
 
 class IKError(RuntimeError):
@@ -117,49 +115,21 @@ def _seed_table(robot: DHModel, count: int) -> _SeedTable:
     return _SeedTable(q=q, features=features)
 
 
-@functools.lru_cache(maxsize=1)
-def _library() -> ctypes.CDLL:
-    """Load the compiled search (package robotica_ik_native) on the first solve."""
-    # Imported here: the core modules import without a ROS environment.
-    from ament_index_python.packages import get_package_prefix, PackageNotFoundError
-    try:
-        prefix = get_package_prefix('robotica_ik_native')
-    except (PackageNotFoundError, OSError) as error:   # OSError: AMENT_PREFIX_PATH not set
-        raise RuntimeError('ikine needs the compiled package robotica_ik_native: run '
-                           'scripts/setup.sh, then source scripts/env.sh') from error
-    lib = ctypes.CDLL(os.path.join(prefix, 'lib', 'librobotica_ik_native.so'))
-    pointer, long = ctypes.c_void_p, ctypes.c_long
-    lib.rik_robot_new.restype = pointer
-    lib.rik_robot_new.argtypes = [ctypes.c_char_p, ctypes.c_char_p, pointer, long, pointer,
-                                  pointer, ctypes.c_double, ctypes.c_char_p, long]
-    lib.rik_robot_free.restype = None
-    lib.rik_robot_free.argtypes = [pointer]
-    lib.rik_solve.restype = long
-    lib.rik_solve.argtypes = [pointer, long, pointer, pointer, pointer, ctypes.c_double, long,
-                              long, ctypes.c_uint64, pointer, ctypes.c_char_p, long]
-    return lib
-
-
-def _address(array: NDArray[Any]) -> int:
-    """Return the address of a C-contiguous array's data (for the C interface)."""
-    return int(array.__array_interface__['data'][0])
-
-
 class _NativeRobot:
     """The compiled solver's copy of one robot (Pinocchio model, tool frame, seed table)."""
 
     def __init__(self, robot: DHModel, seed_count: int) -> None:
-        lib = _library()
+        lib = native_library()
         table = _seed_table(robot, seed_count)
         revolute = np.ascontiguousarray(~robot.prismatic, dtype=np.uint8)
-        error = ctypes.create_string_buffer(_ERROR_SIZE)
+        error = ctypes.create_string_buffer(ERROR_SIZE)
         # Pinocchio's own serialisation carries the model built by build_model to C++.
         handle = lib.rik_robot_new(robot.pinocchio_model.saveToString().encode(),
-                                   TOOL_FRAME.encode(), _address(revolute), seed_count,
-                                   _address(table.q), _address(table.features),
-                                   _ROTATION_SCALE, error, _ERROR_SIZE)
+                                   TOOL_FRAME.encode(), address(revolute), seed_count,
+                                   address(table.q), address(table.features),
+                                   _ROTATION_SCALE, error, ERROR_SIZE)
         if not handle:
-            raise RuntimeError(f'robotica_ik_native: {error.value.decode()}')
+            raise RuntimeError(f'robotica_native: {error.value.decode()}')
         self.handle = handle
         weakref.finalize(self, lib.rik_robot_free, handle)
 
@@ -224,7 +194,7 @@ def ikine_solve(dh: DHModel | ArrayLike, T: ArrayLike, stol: float = 1e-6, ilimi
         For a bad table, T, q0, mask, stol, ilimit, slimit, seed or seed_count (never for
         non-convergence).
     RuntimeError
-        When the compiled solver (package ``robotica_ik_native``) is not built.
+        When the compiled solver (package ``robotica_native``) is not built.
 
     Examples
     --------
@@ -256,16 +226,16 @@ def ikine_solve(dh: DHModel | ArrayLike, T: ArrayLike, stol: float = 1e-6, ilimi
     native = _native_robot(robot, int(seed_count))
     m, n = poses.shape[0], robot.n
     out = np.empty((m, n + 3))      # per pose: q, residual, iterations, success (0/1)
-    error = ctypes.create_string_buffer(_ERROR_SIZE)
-    status = _library().rik_solve(
-        native.handle, m, _address(poses), None if start is None else _address(start),
-        None if weights is None else _address(weights), float(stol), int(ilimit), int(slimit),
-        int(seed), _address(out), error, _ERROR_SIZE)
+    error = ctypes.create_string_buffer(ERROR_SIZE)
+    status = native_library().rik_solve(
+        native.handle, m, address(poses), None if start is None else address(start),
+        None if weights is None else address(weights), float(stol), int(ilimit), int(slimit),
+        int(seed), address(out), error, ERROR_SIZE)
     if status > 0:
         raise ValueError(f'T[{status - 1}] is not a finite homogeneous transform (rotation '
                          'block orthonormal with det +1, last row [0 0 0 1])')
     if status < 0:
-        raise RuntimeError(f'robotica_ik_native: {error.value.decode()}')
+        raise RuntimeError(f'robotica_native: {error.value.decode()}')
     q, residual, iterations, success = out[:, :n], out[:, n], out[:, n + 1], out[:, n + 2]
     if single:
         return IKResult(q=q[0].copy(), success=bool(success[0]), iterations=int(iterations[0]),

@@ -1,5 +1,5 @@
 """
-Tests of robotica_kin.ik's compiled search (package robotica_ik_native), beyond test_ik.py.
+Tests of robotica_kin.ik's compiled search (package robotica_native), beyond test_ik.py.
 
 Solutions are checked through the forward kinematics computed as a NumPy product of Craig's
 link transforms (4.5) (``tests/reference_models.py``), independent of Pinocchio and the solver.

@@ -11,17 +11,24 @@ at some instant (Ej. 8.4) is added to the last link's inertia with
 :meth:`ArmSimulation.add_payload`; :meth:`ArmSimulation.step_braked` is the safe stop (brakes
 hold the joints).
 
-The state is owned here; time is a step counter times ``step_period`` (no clock is read).
+The state is owned here; time is a step counter times ``step_period`` (no clock is read). The
+RK4 step itself runs compiled (package ``robotica_native``, arm_step.cpp: four ABA calls of
+Pinocchio's C++ API with the friction law, one ctypes call per step) on the same Pinocchio
+model, passed through Pinocchio's serialisation; this module validates the input, saturates the
+torque and applies the joint stops.
 """
 
+import ctypes
 from dataclasses import dataclass
 import math
+import weakref
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 import pinocchio as pin
 from robotica_kin.dh import as_dyn_model, DHModel
 from robotica_kin.dynamics import DEFAULT_GRAVITY, JointFriction, set_gravity
+from robotica_kin.native_library import address, ERROR_SIZE, native_library
 
 __all__ = ['ArmSimulation', 'ArmSimulationParams']
 
@@ -87,12 +94,37 @@ class ArmSimulation:
         self.params = params
         self._model = pin.Model(robot.pinocchio_model)
         set_gravity(self._model, params.gravity)
-        self._data = self._model.createData()
         self._tau_max = np.array(params.tau_max) if params.tau_max else np.full(n, np.inf)
-        self._viscous = (np.array(params.unmodelled_viscous) if params.unmodelled_viscous
-                         else np.zeros(n))
-        self._friction = JointFriction(robot)
+        self._saturates = bool(np.isfinite(self._tau_max).any())
+        friction = JointFriction(robot)
+        unmodelled = np.array(params.unmodelled_viscous) if params.unmodelled_viscous else 0.0
+        self._friction = [np.ascontiguousarray(friction.viscous + unmodelled, dtype=np.float64),
+                          np.ascontiguousarray(friction.coulomb_positive, dtype=np.float64),
+                          np.ascontiguousarray(friction.coulomb_negative, dtype=np.float64)]
+        self._error = ctypes.create_string_buffer(ERROR_SIZE)
+        # The compiled step works in place on these buffers, whose addresses are taken once
+        # (taking an array's address costs 2-3 µs in Python, as much as the step's own ABA).
+        self._buffers = np.zeros((3, n))          # q, q', tau
+        self._addresses = [address(row) for row in self._buffers]
+        self._native = 0
+        self._free_native: weakref.finalize | None = None
+        self._load_native_model()
         self.reset(q0, qd0)
+
+    def _load_native_model(self) -> None:
+        """Give the compiled step (a new copy of) the plant's model, gravity and friction."""
+        lib = native_library()
+        gravity = np.ascontiguousarray(self.params.gravity, dtype=np.float64)
+        viscous, coulomb_positive, coulomb_negative = self._friction
+        handle = lib.ras_arm_new(self._model.saveToString().encode(), address(gravity),
+                                 address(viscous), address(coulomb_positive),
+                                 address(coulomb_negative), self._error, ERROR_SIZE)
+        if not handle:
+            raise RuntimeError(f'robotica_native: {self._error.value.decode()}')
+        if self._free_native is not None:
+            self._free_native()
+        self._native = handle
+        self._free_native = weakref.finalize(self, lib.ras_arm_free, handle)
 
     def reset(self, q0: ArrayLike, qd0: ArrayLike) -> None:
         """Set the state to (q0, qd0) at time 0."""
@@ -100,8 +132,8 @@ class ArmSimulation:
         qd = self.robot.check_q(qd0, 'qd0')
         if q.ndim != 1 or qd.ndim != 1:
             raise ValueError(f'q0 and qd0 must have shape ({self.robot.n},)')
-        self.q = q.copy()
-        self.qd = qd.copy()
+        self.q = np.array(q, dtype=np.float64)
+        self.qd = np.array(qd, dtype=np.float64)
         self.steps = 0
         self.applied_torque = np.zeros(self.robot.n)
 
@@ -109,13 +141,6 @@ class ArmSimulation:
     def time(self) -> float:
         """Return the simulated time [s]."""
         return round(self.steps * self.params.step_period, 12)
-
-    def _acceleration(self, q: NDArray[np.float64], qd: NDArray[np.float64],
-                      tau: NDArray[np.float64]) -> NDArray[np.float64]:
-        load = tau - self._viscous * qd
-        if not self._friction.is_zero:
-            load = load - self._friction(qd)
-        return pin.aba(self._model, self._data, q, qd, load)
 
     def step(self, tau: ArrayLike) -> NDArray[np.float64]:
         """
@@ -127,21 +152,17 @@ class ArmSimulation:
             For a torque of the wrong size or not finite (the state is left unchanged).
 
         """
-        torque = np.asarray(tau, dtype=np.float64)
+        torque = np.ascontiguousarray(tau, dtype=np.float64)
         if torque.shape != (self.robot.n,) or not np.isfinite(torque).all():
             raise ValueError(f'tau must be {self.robot.n} finite torques, got {tau!r}')
-        torque = np.clip(torque, -self._tau_max, self._tau_max)
-        h = self.params.step_period
-        q, qd = self.q, self.qd
-        a1 = self._acceleration(q, qd, torque)
-        v2 = qd + 0.5 * h * a1
-        a2 = self._acceleration(q + 0.5 * h * qd, v2, torque)
-        v3 = qd + 0.5 * h * a2
-        a3 = self._acceleration(q + 0.5 * h * v2, v3, torque)
-        v4 = qd + h * a3
-        a4 = self._acceleration(q + h * v3, v4, torque)
-        self.q = q + (h / 6.0) * (qd + 2.0 * v2 + 2.0 * v3 + v4)
-        self.qd = qd + (h / 6.0) * (a1 + 2.0 * a2 + 2.0 * a3 + a4)
+        if self._saturates:
+            torque = np.clip(torque, -self._tau_max, self._tau_max)
+        buffers = self._buffers
+        buffers[0], buffers[1], buffers[2] = self.q, self.qd, torque
+        if native_library().ras_arm_step(self._native, *self._addresses,
+                                         self.params.step_period, self._error, ERROR_SIZE):
+            raise RuntimeError(f'robotica_native: {self._error.value.decode()}')
+        self.q, self.qd = buffers[0].copy(), buffers[1].copy()   # callers may keep old ones
         if self.params.respect_limits:
             self._stop_at_limits()
         self.applied_torque = torque
@@ -186,6 +207,7 @@ class ArmSimulation:
         n = self.robot.n
         self._model.inertias[n] = self._model.inertias[n] + pin.Inertia(mass, point,
                                                                         np.zeros((3, 3)))
+        self._load_native_model()
 
     def _stop_at_limits(self) -> None:
         low, high = self.robot.qlim[:, 0], self.robot.qlim[:, 1]

@@ -11,6 +11,7 @@ clock and draws no random numbers.
 
 from abc import ABC, abstractmethod
 from dataclasses import dataclass
+import math
 from typing import Any
 
 import numpy as np
@@ -102,7 +103,7 @@ def check_dt(dt: float) -> float:
         value = float(dt)
     except (TypeError, ValueError) as err:
         raise ValueError(f'dt must be a number of seconds, got {dt!r}') from err
-    if not (np.isfinite(value) and value > 0.0):
+    if not (math.isfinite(value) and value > 0.0):
         raise ValueError(f'dt must be finite and > 0 s, got {dt!r}')
     return value
 

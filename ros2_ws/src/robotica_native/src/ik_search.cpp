@@ -18,6 +18,8 @@
 #include <pinocchio/serialization.hpp>
 #include <pinocchio/spatial.hpp>
 
+#include "c_error.hpp"
+
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
 
@@ -385,14 +387,6 @@ private:
   Matrix6x J_, Jw_;
 };
 
-void copy_message(const char * what, char * error, long error_size)
-{
-  if (error != nullptr && error_size > 0) {
-    std::strncpy(error, what, static_cast<std::size_t>(error_size - 1));
-    error[error_size - 1] = '\0';
-  }
-}
-
 // True if a row-major 4x4 pose is finite, its rotation block orthonormal (1e-6) with det +1
 // and its last row [0 0 0 1] (1e-9).
 bool is_homogeneous(const double * pose)
@@ -420,15 +414,10 @@ void * rik_robot_new(const char * model_text, const char * tool_frame,
   const unsigned char * revolute, long seed_count, const double * seed_q,
   const double * seed_features, double rotation_scale, char * error, long error_size)
 {
-  try {
-    return new Robot(model_text, tool_frame, revolute, seed_count, seed_q, seed_features,
-             rotation_scale);
-  } catch (const std::exception & e) {
-    copy_message(e.what(), error, error_size);
-  } catch (...) {
-    copy_message("unknown C++ exception", error, error_size);
-  }
-  return nullptr;
+  return new_or_report([&] {
+      return new Robot(model_text, tool_frame, revolute, seed_count, seed_q, seed_features,
+               rotation_scale);
+    }, error, error_size);
 }
 
 __attribute__((visibility("default")))
