@@ -97,14 +97,14 @@ def run_echo(count: int) -> None:
     """Answer ``count`` JointState messages with a Float64MultiArray each, then exit."""
     import rclpy
     from rclpy.experimental import EventsExecutor
-    from robotica_kin.nodes.qos import COMMAND_QOS, STREAM_SUB_QOS
+    from robotica_kin.nodes.qos import COMMAND_PUB_QOS, STREAM_SUB_QOS
     from sensor_msgs.msg import JointState as JointStateMsg
     from std_msgs.msg import Float64MultiArray
 
     rclpy.init()
     node = rclpy.create_node('bench_echo')
     answered = [0]
-    publisher = node.create_publisher(Float64MultiArray, ECHO_TOPIC, COMMAND_QOS)
+    publisher = node.create_publisher(Float64MultiArray, ECHO_TOPIC, COMMAND_PUB_QOS)
 
     def answer(msg: JointStateMsg) -> None:
         publisher.publish(Float64MultiArray(data=list(msg.position)))

@@ -36,7 +36,7 @@ from robotica_kin.nodes.convert import seconds_to_stamp, stamp_to_seconds
 from robotica_kin.nodes.dh_messages import dynamic_robot_from_parameters
 from robotica_kin.nodes.entry_point import run_node
 from robotica_kin.nodes.parameters import declare
-from robotica_kin.nodes.qos import COMMAND_QOS, LATCHED_QOS, STREAM_PUB_QOS, STREAM_SUB_QOS
+from robotica_kin.nodes.qos import COMMAND_PUB_QOS, LATCHED_QOS, STREAM_PUB_QOS, STREAM_SUB_QOS
 from robotica_kin.robots import ROBOT_NAMES
 from robotica_msgs.msg import JointControllerState
 from sensor_msgs.msg import JointState as JointStateMsg
@@ -106,7 +106,8 @@ class JointControllerNode(Node):
         self._trajectory_start: float | None = None
         self._hold: np.ndarray | None = None
         self._previous_time: float | None = None
-        self._torque_pub = self.create_publisher(Float64MultiArray, 'joint_torques', COMMAND_QOS)
+        self._torque_pub = self.create_publisher(Float64MultiArray, 'joint_torques',
+                                                 COMMAND_PUB_QOS)
         self._state_pub = self.create_publisher(JointControllerState, '~/controller_state',
                                                 STREAM_PUB_QOS)
         self.create_subscription(JointTrajectory, '~/joint_trajectory', self._on_trajectory,

@@ -24,7 +24,7 @@ from robotica_ctrl.mobile.pure_pursuit import PurePursuit, PurePursuitParams
 from robotica_kin.nodes.convert import path_points, pose2d_from_odometry, stamp_to_seconds
 from robotica_kin.nodes.entry_point import run_node
 from robotica_kin.nodes.parameters import declare
-from robotica_kin.nodes.qos import COMMAND_QOS, LATCHED_QOS, STREAM_PUB_QOS, STREAM_SUB_QOS
+from robotica_kin.nodes.qos import COMMAND_PUB_QOS, LATCHED_QOS, STREAM_PUB_QOS, STREAM_SUB_QOS
 from robotica_msgs.msg import TrackingError
 
 LAWS = ('pure_pursuit',)
@@ -70,7 +70,7 @@ class PathTrackerNode(Node):
         self._path_frame = ''
         self._pose_msg = None
         self._reported = set()
-        self._cmd_pub = self.create_publisher(Twist, 'cmd_vel', COMMAND_QOS)
+        self._cmd_pub = self.create_publisher(Twist, 'cmd_vel', COMMAND_PUB_QOS)
         self._error_pub = self.create_publisher(TrackingError, '~/tracking_error',
                                                 STREAM_PUB_QOS)
         self.create_subscription(Path, '~/path', self._on_path, LATCHED_QOS)

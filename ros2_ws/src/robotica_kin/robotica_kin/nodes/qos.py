@@ -7,8 +7,11 @@ QoS profiles by role, shared by every robotica node (STYLE.md §5, "QoS by role"
   recorder whose subscription is matched a moment late still get the first messages of a run.
   Stream subscribers ask for RELIABLE, VOLATILE: in lockstep a lost message would stall a step,
   and a volatile reader gets no stale history.
-* Commands are RELIABLE, VOLATILE, keep-last 1: only the newest matters, and a late-joining
-  consumer must never receive an old command.
+* Commands are RELIABLE, VOLATILE: a late-joining consumer must never receive an old command.
+  Their consumers keep the newest only (keep-last 1); their publishers keep a history of
+  ``STREAM_HISTORY``, so that a recorder that falls behind for a moment (a 1 kHz lockstep arm)
+  loses none: with keep-last 1 on the writer a reliable sample not yet acknowledged by the
+  recorder is overwritten by the next one.
 * Latched data (paths, models) are RELIABLE, TRANSIENT_LOCAL, keep-last 1 on both ends.
 """
 from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
@@ -19,5 +22,6 @@ STREAM_PUB_QOS = QoSProfile(depth=STREAM_HISTORY, reliability=ReliabilityPolicy.
                             durability=DurabilityPolicy.TRANSIENT_LOCAL)
 STREAM_SUB_QOS = QoSProfile(depth=10, reliability=ReliabilityPolicy.RELIABLE)
 COMMAND_QOS = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE)
+COMMAND_PUB_QOS = QoSProfile(depth=STREAM_HISTORY, reliability=ReliabilityPolicy.RELIABLE)
 LATCHED_QOS = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,
                          durability=DurabilityPolicy.TRANSIENT_LOCAL)
