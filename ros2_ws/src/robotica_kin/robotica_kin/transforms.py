@@ -732,7 +732,10 @@ def tr2angvec(T: ArrayLike, unit: str = 'rad') -> tuple[float, Vector]:
     theta = math.hypot(*vector)
     if theta == 0.0:
         return 0.0, np.array([0.0, 0.0, 1.0])
-    return theta / factor, vector / theta
+    # Normalised twice: for a subnormal rotation vector (θ ~ 1e-313) the components carry few
+    # significant bits, and one division leaves the axis's norm off 1 by about 1e-11.
+    axis = vector / theta
+    return theta / factor, axis / np.linalg.norm(axis)
 
 
 def angvec2tr(theta: float, k: ArrayLike, unit: str = 'rad') -> NDArray[np.float64]:
