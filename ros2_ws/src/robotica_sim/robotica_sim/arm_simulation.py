@@ -132,8 +132,8 @@ class ArmSimulation:
         qd = self.robot.check_q(qd0, 'qd0')
         if q.ndim != 1 or qd.ndim != 1:
             raise ValueError(f'q0 and qd0 must have shape ({self.robot.n},)')
-        self.q = np.array(q, dtype=np.float64)
-        self.qd = np.array(qd, dtype=np.float64)
+        self.q = q.copy()
+        self.qd = qd.copy()
         self.steps = 0
         self.applied_torque = np.zeros(self.robot.n)
 
@@ -152,7 +152,7 @@ class ArmSimulation:
             For a torque of the wrong size or not finite (the state is left unchanged).
 
         """
-        torque = np.ascontiguousarray(tau, dtype=np.float64)
+        torque = np.asarray(tau, dtype=np.float64)
         if torque.shape != (self.robot.n,) or not np.isfinite(torque).all():
             raise ValueError(f'tau must be {self.robot.n} finite torques, got {tau!r}')
         if self._saturates:

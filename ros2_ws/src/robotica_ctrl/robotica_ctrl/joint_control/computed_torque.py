@@ -92,7 +92,6 @@ class ComputedTorque(JointControlLaw):
         self.model = model
         self.n = n
         self.gains = ComputedTorqueGains() if gains is None else gains
-        self.grav = None if grav is None else np.array(grav, dtype=np.float64)
         self.use_friction = bool(use_friction)
         self._kp, self._kv, self._ki, self._integral_max = (
             per_joint(name, getattr(self.gains, name), n)

@@ -116,6 +116,25 @@ def pose_matrix(pose: Pose) -> NDArray[np.float64]:
     return T
 
 
+def _named_robot_or_rows(robot: str, table: Optional[Sequence[float]], parameter: str,
+                         width: int, columns: str) -> DHModel | np.ndarray:
+    """
+    Return the built-in ``robot``, or the flattened ``table`` parameter as rows (n, width).
+
+    Exactly one of them must be given; ``parameter`` and ``columns`` name the table in errors.
+    """
+    values = list(table or [])
+    if robot and values:
+        raise ValueError(f"robot {robot!r} and {parameter} both given: set robot to '' to use "
+                         f'{parameter}')
+    if robot:
+        return robot_by_name(robot)
+    if not values or len(values) % width:
+        raise ValueError(f'{parameter} must hold n rows of {width} values {columns}, got '
+                         f'{len(values)} values')
+    return np.reshape(np.asarray(values, dtype=np.float64), (-1, width))
+
+
 def robot_from_parameters(robot: str, dh_table: Optional[Sequence[float]],
                           joint_names: Optional[Sequence[str]] = None) -> DHModel:
     """
@@ -151,17 +170,8 @@ def robot_from_parameters(robot: str, dh_table: Optional[Sequence[float]],
     ValueError: robot 'puma560' and dh_table both given: set robot to '' to use dh_table
 
     """
-    values = list(dh_table or [])
-    if robot and values:
-        raise ValueError(f"robot {robot!r} and dh_table both given: set robot to '' to use "
-                         'dh_table')
-    if robot:
-        model = robot_by_name(robot)
-    else:
-        if not values or len(values) % 5:
-            raise ValueError('dh_table must hold n rows of 5 values [alpha a theta d sigma], '
-                             f'got {len(values)} values')
-        model = dh_model(np.reshape(values, (-1, 5)), name='dh_table')
+    chosen = _named_robot_or_rows(robot, dh_table, 'dh_table', 5, '[alpha a theta d sigma]')
+    model = chosen if isinstance(chosen, DHModel) else dh_model(chosen, name='dh_table')
     if not joint_names:
         return model
     return dh_model(model.table, name=model.name, qlim=model.qlim, joint_names=list(joint_names),
@@ -204,21 +214,14 @@ def dynamic_robot_from_parameters(robot: str, dyn_table: Optional[Sequence[float
     ValueError: robot 'planar_rr' has no dynamic parameters: give a dyn_table instead
 
     """
-    values = list(dyn_table or [])
-    if robot and values:
-        raise ValueError(f"robot {robot!r} and dyn_table both given: set robot to '' to use "
-                         'dyn_table')
-    if robot:
-        model = robot_by_name(robot)
+    chosen = _named_robot_or_rows(robot, dyn_table, 'dyn_table', 20, '(HEMERO dyn)')
+    if isinstance(chosen, DHModel):
+        model = chosen
         if model.dyn is None:
             raise ValueError(f'robot {robot!r} has no dynamic parameters: give a dyn_table '
                              'instead')
     else:
-        if not values or len(values) % 20:
-            raise ValueError('dyn_table must hold n rows of 20 values (HEMERO dyn), got '
-                             f'{len(values)} values')
-        table = np.reshape(np.asarray(values, dtype=np.float64), (-1, 20))
-        model = dh_model(table[:, :5], name='dyn_table', dyn=table)
+        model = dh_model(chosen[:, :5], name='dyn_table', dyn=chosen)
     qlim = model.qlim
     if joint_limits:
         qlim = np.reshape(np.asarray(joint_limits, dtype=np.float64), (-1, 2)) \
