@@ -28,6 +28,7 @@ from numpy.typing import ArrayLike, NDArray
 import pinocchio as pin
 from robotica_kin.dh import as_dyn_model, DHModel
 from robotica_kin.dynamics import DEFAULT_GRAVITY, JointFriction, set_gravity
+from robotica_kin.finite import all_finite
 from robotica_kin.native_library import address, ERROR_SIZE, native_library
 
 __all__ = ['ArmSimulation', 'ArmSimulationParams']
@@ -96,6 +97,7 @@ class ArmSimulation:
         set_gravity(self._model, params.gravity)
         self._tau_max = np.array(params.tau_max) if params.tau_max else np.full(n, np.inf)
         self._saturates = bool(np.isfinite(self._tau_max).any())
+        self._low, self._high = robot.qlim[:, 0].copy(), robot.qlim[:, 1].copy()
         friction = JointFriction(robot)
         unmodelled = np.array(params.unmodelled_viscous) if params.unmodelled_viscous else 0.0
         self._friction = [np.ascontiguousarray(friction.viscous + unmodelled, dtype=np.float64),
@@ -153,7 +155,7 @@ class ArmSimulation:
 
         """
         torque = np.asarray(tau, dtype=np.float64)
-        if torque.shape != (self.robot.n,) or not np.isfinite(torque).all():
+        if torque.shape != (self.robot.n,) or not all_finite(torque):
             raise ValueError(f'tau must be {self.robot.n} finite torques, got {tau!r}')
         if self._saturates:
             torque = np.clip(torque, -self._tau_max, self._tau_max)
@@ -210,7 +212,7 @@ class ArmSimulation:
         self._load_native_model()
 
     def _stop_at_limits(self) -> None:
-        low, high = self.robot.qlim[:, 0], self.robot.qlim[:, 1]
+        low, high = self._low, self._high
         below, above = self.q < low, self.q > high
         if below.any() or above.any():
             self.q = np.clip(self.q, low, high)

@@ -97,6 +97,8 @@ class ComputedTorque(JointControlLaw):
             per_joint(name, getattr(self.gains, name), n)
             for name in ('kp', 'kv', 'ki', 'integral_max'))
         self._integral = np.zeros(n)
+        self._integrates = bool((self._ki > 0.0).any())
+        self._adds_friction = self.use_friction and not self._friction.is_zero
 
     @property
     def integral(self) -> NDArray[np.float64]:
@@ -125,13 +127,13 @@ class ComputedTorque(JointControlLaw):
             raise ValueError(f'the model has {self.n} joints, got {n}')
         q, qd = np.asarray(state.q), np.asarray(state.qd)
         e = np.asarray(reference.q_d) - q
-        ed = np.asarray(reference.qd_d) - qd
-        tau_r = np.asarray(reference.qdd_d) + self._kv * ed + self._kp * e
-        if (self._ki > 0.0).any():
+        tau_r = np.asarray(reference.qdd_d) + self._kv * (np.asarray(reference.qd_d) - qd) \
+            + self._kp * e
+        if self._integrates:
             self._integral = np.clip(self._integral + e * dt, -self._integral_max,
                                      self._integral_max)
             tau_r = tau_r + self._ki * self._integral
         tau = pin.rnea(self._pin_model, self._pin_data, q, qd, tau_r)
-        if self.use_friction and not self._friction.is_zero:
-            tau = tau + self._friction(qd)
-        return np.array(tau, dtype=np.float64)
+        if self._adds_friction:
+            return tau + self._friction(qd)
+        return tau   # pin.rnea returns a new array (not a view of the data workspace)

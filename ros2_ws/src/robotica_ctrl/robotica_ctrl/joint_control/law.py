@@ -16,6 +16,7 @@ from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
+from robotica_kin.finite import all_finite
 
 __all__ = ['JointControlLaw', 'JointReference', 'JointState', 'check_dt', 'gain_field',
            'per_joint']
@@ -29,18 +30,19 @@ def _vector(name: str, value: ArrayLike) -> NDArray[np.float64]:
         raise ValueError(f'{name} must be a vector of numbers, got {value!r}') from err
     if array.ndim != 1 or array.size == 0:
         raise ValueError(f'{name} must have shape (n,) with n >= 1, got shape {array.shape}')
-    if not np.isfinite(array).all():
+    if not all_finite(array):
         raise ValueError(f'{name} must be finite, got {array!r}')
     array.setflags(write=False)
     return array
 
 
 def _same_shape(owner: Any, *names: str) -> None:
-    for name in names:
-        object.__setattr__(owner, name, _vector(name, getattr(owner, name)))
-    shapes = [getattr(owner, name).shape for name in names]
-    if len(set(shapes)) != 1:
-        raise ValueError(f'{", ".join(names)} must have the same shape, got {shapes}')
+    arrays = [_vector(name, getattr(owner, name)) for name in names]
+    for name, array in zip(names, arrays):
+        object.__setattr__(owner, name, array)
+    if any(array.shape != arrays[0].shape for array in arrays):
+        raise ValueError(f'{", ".join(names)} must have the same shape, got '
+                         f'{[array.shape for array in arrays]}')
 
 
 @dataclass(frozen=True, eq=False)
