@@ -19,8 +19,8 @@ the one name re-exported here, as the issue of the inverse kinematics asks.
 from typing import Any
 
 __all__ = [
-    'IKError', 'analytic_ik', 'angles', 'dh', 'differential_motion', 'dynamics',
-    'forward_kinematics',
+    'IKError', 'analytic_ik', 'angles', 'dh', 'differential_motion', 'dynamics', 'finite',
+    'forward_kinematics', 'geodetic',
     'hemero', 'ik', 'integrators', 'jacobian', 'mobile', 'moving_base', 'pinocchio_model',
     'plotbot', 'robots',
     'transforms', 'types', 'velocity_propagation',

@@ -5,4 +5,5 @@ Pure cores (no rclpy) are the top-level modules; the ROS 2 shells are in ``robot
 and the command line in ``robotica_sim.cli``.
 """
 
-__all__ = ['diff_drive_simulation', 'encoder_model', 'scenario', 'run_summary']
+__all__ = ['allan', 'compass_model', 'encoder_model', 'gps_model', 'gyro_model', 'run_summary',
+           'scenario', 'vehicle_simulation']

@@ -16,7 +16,6 @@ joint, K_p = 25, K_v = 10):
   arm simulator and recorder as separate processes, lockstep), its own RTF.
 """
 
-from dataclasses import dataclass
 import json
 import os
 from pathlib import Path
@@ -33,22 +32,13 @@ from robotica_ctrl.joint_control import (ComputedTorque, ComputedTorqueGains, Jo
 from robotica_ctrl.trajectory.sinusoid import sinusoid
 from robotica_kin.robots import puma560
 from robotica_sim.arm_simulation import ArmSimulation, ArmSimulationParams
+from robotica_sim.measurement_row import MeasurementRow
 
-__all__ = ['ArmBenchmarkRow', 'core_benchmark', 'loop_benchmark', 'round_trip_benchmark',
+__all__ = ['core_benchmark', 'loop_benchmark', 'round_trip_benchmark',
            'run_echo']
 
 STEP = 1e-3   # [s] 1 kHz
 PING_TOPIC, ECHO_TOPIC = 'bench_joint_states', 'bench_joint_torques'
-
-
-@dataclass(frozen=True)
-class ArmBenchmarkRow:
-    """One measurement: what, its value and unit, and how it was obtained."""
-
-    what: str
-    value: float
-    unit: str
-    detail: str
 
 
 def _per_step(function: Callable[[int], None], steps: int) -> float:
@@ -59,7 +49,7 @@ def _per_step(function: Callable[[int], None], steps: int) -> float:
     return (time.perf_counter() - start) / steps * 1e6
 
 
-def core_benchmark(steps: int = 5000) -> list[ArmBenchmarkRow]:
+def core_benchmark(steps: int = 5000) -> list[MeasurementRow]:
     """Time the simulator, the law and both in one loop (PUMA 560, 1 kHz, ``steps`` steps)."""
     robot = puma560()
     t = np.arange(steps) * STEP
@@ -85,11 +75,11 @@ def core_benchmark(steps: int = 5000) -> list[ArmBenchmarkRow]:
     loop_us = _per_step(loop, steps)
     error = float(np.abs(sim.q - q_d[-1]).max())
     return [
-        ArmBenchmarkRow('core simulator step', sim_us, 'µs', 'ArmSimulation.step, RK4, 4 ABA'),
-        ArmBenchmarkRow('core controller step', law_us, 'µs', 'ComputedTorque.update, 1 RNEA'),
-        ArmBenchmarkRow('core loop RTF', STEP * 1e6 / loop_us, '×',
-                        f'{steps} steps, {loop_us:.1f} µs each; max |e| at the end '
-                        f'{error:.1e} rad'),
+        MeasurementRow('core simulator step', sim_us, 'µs', 'ArmSimulation.step, RK4, 4 ABA'),
+        MeasurementRow('core controller step', law_us, 'µs', 'ComputedTorque.update, 1 RNEA'),
+        MeasurementRow('core loop RTF', STEP * 1e6 / loop_us, '×',
+                       f'{steps} steps, {loop_us:.1f} µs each; max |e| at the end '
+                       f'{error:.1e} rad'),
     ]
 
 
@@ -121,7 +111,7 @@ def run_echo(count: int) -> None:
     rclpy.try_shutdown()
 
 
-def round_trip_benchmark(count: int = 2000) -> list[ArmBenchmarkRow]:
+def round_trip_benchmark(count: int = 2000) -> list[MeasurementRow]:
     """Time ``count`` JointState → Float64MultiArray round trips through an echo process."""
     import rclpy
     from rclpy.experimental import EventsExecutor
@@ -169,25 +159,26 @@ def round_trip_benchmark(count: int = 2000) -> list[ArmBenchmarkRow]:
     median = statistics.median(times) * 1e6
     p95 = float(np.percentile(times, 95)) * 1e6
     return [
-        ArmBenchmarkRow('DDS round trip', median, 'µs',
-                        f'median of {count}, p95 {p95:.0f} µs; JointState out, '
-                        'Float64MultiArray back, EventsExecutor at both ends'),
-        ArmBenchmarkRow('lockstep RTF limit', STEP * 1e6 / median, '×',
-                        '1 ms step / median round trip'),
+        MeasurementRow('DDS round trip', median, 'µs',
+                       f'median of {count}, p95 {p95:.0f} µs; JointState out, '
+                       'Float64MultiArray back, EventsExecutor at both ends'),
+        MeasurementRow('lockstep RTF limit', STEP * 1e6 / median, '×',
+                       '1 ms step / median round trip'),
     ]
 
 
-def loop_benchmark(duration: float = 5.0) -> list[ArmBenchmarkRow]:
-    """Run ``robotica run puma_computed_torque`` for ``duration`` simulated s; return its RTF."""
+def loop_benchmark(duration: float = 5.0, scenario: str = 'puma_computed_torque',
+                   processes: str = '3 node processes') -> list[MeasurementRow]:
+    """Run ``robotica run <scenario>`` for ``duration`` simulated s; return its RTF."""
     with tempfile.TemporaryDirectory() as tmp:
-        command = ['robotica', 'run', 'puma_computed_torque', '--duration', str(duration),
+        command = ['robotica', 'run', scenario, '--duration', str(duration),
                    '--output-dir', str(Path(tmp) / 'run'), '--json', '--quiet']
         proc = subprocess.run(command, capture_output=True, text=True, env=dict(os.environ),
                               timeout=3600)
     if proc.returncode != 0:
         raise RuntimeError(f'robotica run failed ({proc.returncode}): {proc.stderr.strip()}')
     summary = json.loads(proc.stdout)
-    return [ArmBenchmarkRow('ROS loop RTF', float(summary['real_time_factor']), '×',
-                            f'robotica run puma_computed_torque --duration {duration:g}: '
-                            '3 node processes + recorder, lockstep; '
-                            f'{summary["lockstep_timeouts"]} lockstep timeouts')]
+    return [MeasurementRow('ROS loop RTF', float(summary['real_time_factor']), '×',
+                           f'robotica run {scenario} --duration {duration:g}: '
+                           f'{processes} + recorder, lockstep; '
+                           f'{summary["lockstep_timeouts"]} lockstep timeouts')]

@@ -10,7 +10,9 @@ import math
 
 import numpy as np
 from robotica_ctrl import path_shapes
+from robotica_kin.mobile.vehicles import STEERED_TYPES
 from robotica_kin.robots import puma560, two_link_arm
+from robotica_sim.gps_model import gps_preset
 from robotica_sim.scenario import Scenario, ScenarioError
 
 PATH_SHAPES = ('straight_line', 'circle', 'rounded_rectangle', 'figure_eight')
@@ -20,6 +22,9 @@ CONTROLLER_STATE_TOPIC = '/joint_controller/controller_state'
 TRAJECTORY_TOPIC = '/joint_controller/joint_trajectory'
 RECORDED_TOPICS = ('/clock', '/cmd_vel', '/odom', '/ground_truth/odom', '/joint_states',
                    '/wheel_encoders', '/path', TRACKING_ERROR_TOPIC, STATUS_TOPIC, '/rosout')
+SENSOR_TOPICS = {'gyro': ('/imu/data',),
+                 'compass': ('/compass/heading', '/compass/magnetic_field'),
+                 'gps': ('/gps/fix',)}
 ARM_RECORDED_TOPICS = ('/clock', '/joint_states', '/joint_torques', CONTROLLER_STATE_TOPIC,
                        TRAJECTORY_TOPIC, STATUS_TOPIC, '/rosout')
 
@@ -50,8 +55,18 @@ def path_points(scenario: Scenario) -> list[list[float]]:
 
 
 def recorded_topics(scenario: Scenario) -> tuple[str, ...]:
-    """Return the topics the recorder records for ``scenario``."""
-    return ARM_RECORDED_TOPICS if scenario.is_manipulator else RECORDED_TOPICS
+    """Return the topics the recorder records for ``scenario`` (those its nodes publish)."""
+    if scenario.is_manipulator:
+        return ARM_RECORDED_TOPICS
+    topics = list(RECORDED_TOPICS)
+    if scenario.robot.type in STEERED_TYPES:
+        topics[topics.index('/cmd_vel')] = '/vehicle_command'
+    if scenario.tracker.law == 'open_loop':
+        topics.remove(TRACKING_ERROR_TOPIC)     # no path to be off from
+    for sensor, sensor_topics in SENSOR_TOPICS.items():
+        if getattr(scenario.sensors, sensor).enabled:
+            topics.extend(sensor_topics)
+    return tuple(topics)
 
 
 def plan_run(scenario: Scenario) -> list[NodeSpec]:
@@ -133,6 +148,46 @@ def _plan_arm(scenario: Scenario) -> list[NodeSpec]:
     ]
 
 
+def _mobile_sensors(scenario: Scenario) -> list[NodeSpec]:
+    """Return the sensor emulators of a mobile run, each seeded from the scenario's seed."""
+    sensors = scenario.sensors
+    encoders = sensors.encoders
+    nodes = [NodeSpec('robotica_sim', 'encoder_emulator', 'encoder_emulator', {
+        'pulses_per_revolution': encoders.pulses_per_revolution, 'decoding': encoders.decoding,
+        'gear_ratio': encoders.gear_ratio,
+        'missed_count_probability': encoders.missed_count_probability,
+        'seed': scenario.seed * 10 + 1})]
+    if sensors.gyro.enabled:
+        nodes.append(NodeSpec('robotica_sim', 'gyro_emulator', 'gyro_emulator', {
+            'preset': sensors.gyro.preset, 'seed': scenario.seed * 10 + 2}))
+    if sensors.compass.enabled:
+        nodes.append(NodeSpec('robotica_sim', 'compass_emulator', 'compass_emulator', {
+            'noise_stddev': sensors.compass.noise_stddev,
+            'hard_iron': _floats(sensors.compass.hard_iron),
+            'tilt_error': sensors.compass.tilt_error, 'seed': scenario.seed * 10 + 3}))
+    if sensors.gps.enabled:
+        nodes.append(NodeSpec('robotica_sim', 'gps_emulator', 'gps_emulator', {
+            'preset': sensors.gps.preset, **_origin(scenario),
+            'seed': scenario.seed * 10 + 4}))
+    return nodes
+
+
+def _origin(scenario: Scenario) -> dict:
+    latitude, longitude, altitude = scenario.sensors.gps.origin
+    return {'origin.latitude': latitude, 'origin.longitude': longitude,
+            'origin.altitude': altitude}
+
+
+def _gps_bias(scenario: Scenario) -> dict:
+    """Return the odometry's model of the GPS error: the receiver preset's, when it fuses GPS."""
+    if not scenario.odometry.fuse_gps:
+        return {}
+    params = gps_preset(scenario.sensors.gps.preset)
+    return {'gps_bias.stddev': float(params.correlated_stddev[0]),
+            'gps_bias.correlation_time': params.correlation_time,
+            'gps_bias.white_stddev': params.white_stddev}
+
+
 def _plan_mobile(scenario: Scenario) -> list[NodeSpec]:
     where = scenario.source or scenario.name
     robot = scenario.robot
@@ -141,26 +196,37 @@ def _plan_mobile(scenario: Scenario) -> list[NodeSpec]:
     points = path_points(scenario)
     gains = {}
     for key, value in scenario.tracker.gains.items():
-        if isinstance(value, bool) or not isinstance(value, (int, float)) \
-                or not math.isfinite(value):
-            raise ScenarioError(f'{where}: tracker.{key} must be a finite number, got {value!r}')
-        gains[f'{scenario.tracker.law}.{key}'] = float(value)
+        numbers = _numbers(value, f'{where}: tracker.{key}')   # open_loop takes lists
+        gains[f'{scenario.tracker.law}.{key}'] = numbers if isinstance(value, list) \
+            else numbers[0]
+    odometry = scenario.odometry
+    steered = robot.type in STEERED_TYPES
     return [
         NodeSpec('robotica_sim', 'path_publisher', 'path_publisher', {
             'x': [p[0] for p in points], 'y': [p[1] for p in points],
             'frame_id': scenario.path.frame_id}),
-        NodeSpec('robotica_sim', 'encoder_emulator', 'encoder_emulator', {
-            'ticks_per_revolution': scenario.sensors.encoders.ticks_per_revolution}),
+        *_mobile_sensors(scenario),
         NodeSpec('robotica_sim', 'odometry', 'odometry', {
-            'wheel_radius': robot.wheel_radius, 'wheel_separation': robot.wheel_separation,
-            'integration_method': scenario.odometry.integration_method,
+            'wheel_radius': robot.wheel_radius * (1.0 + odometry.wheel_radius_error),
+            'wheel_separation': robot.wheel_separation * (1.0 + odometry.track_error),
+            'integration_method': odometry.integration_method,
+            'heading_source': odometry.heading_source, 'fuse_gps': odometry.fuse_gps,
+            'fuse_compass': odometry.fuse_compass, **_origin(scenario), **_gps_bias(scenario),
             'odom_frame_id': scenario.path.frame_id, **pose}),
         NodeSpec('robotica_ctrl', 'path_tracker', 'path_tracker',
-                 {'law': scenario.tracker.law, **gains},
+                 {'law': scenario.tracker.law, **gains,
+                  'command_type': 'steering' if steered else 'twist',
+                  'wheelbase': robot.wheelbase},
                  remappings={'/path_tracker/path': '/path'}),
         NodeSpec('robotica_sim', 'simulator', 'simulator', {
-            'robot.wheel_radius': robot.wheel_radius,
-            'robot.wheel_separation': robot.wheel_separation,
+            'vehicle.type': robot.type, 'vehicle.wheel_radius': robot.wheel_radius,
+            'vehicle.track': robot.wheel_separation, 'vehicle.wheelbase': robot.wheelbase,
+            'vehicle.base_radius': robot.base_radius, 'vehicle.half_length': robot.half_length,
+            'vehicle.max_steering_angle': robot.max_steering_angle,
+            'vehicle.icr_scale': robot.icr_scale,
+            'traction_time_constant': robot.traction_time_constant,
+            'steering_time_constant': robot.steering_time_constant,
+            'longitudinal_slip': robot.longitudinal_slip,
             'step_period': scenario.step_period, 'pacing': scenario.pacing,
             'end_time': scenario.duration, 'autostart': False, **pose}),
     ]

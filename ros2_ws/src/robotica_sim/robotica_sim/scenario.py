@@ -1,8 +1,9 @@
 """
 Scenarios: what a run is made of (robot, path, sensors, tracker, pacing, seed, duration).
 
-Two kinds of run: a mobile robot (``robot.type: differential_drive``, sections ``path``,
-``sensors``, ``odometry``, ``tracker``) and a manipulator (``robot.type: manipulator``, sections
+Two kinds of run: a mobile robot (``robot.type`` one of
+:data:`robotica_kin.mobile.vehicles.VEHICLE_TYPES`, sections ``path``, ``sensors``, ``odometry``,
+``tracker``) and a manipulator (``robot.type: manipulator``, sections
 ``arm``, ``reference``, ``controller``, book ch. 8). A section of the other kind is an error.
 
 A scenario is a YAML file, validated strictly when loaded: an unknown key, a value of the wrong
@@ -18,6 +19,9 @@ from typing import Any, Optional
 
 from ament_index_python.packages import get_package_share_directory, PackageNotFoundError
 from robotica_kin.mobile.odometry import ODOMETRY_METHODS
+from robotica_kin.mobile.vehicles import VEHICLE_TYPES
+from robotica_sim.gps_model import GPS_PRESETS
+from robotica_sim.gyro_model import GYRO_PRESETS
 import yaml
 
 
@@ -27,11 +31,19 @@ class ScenarioError(ValueError):
 
 @dataclass(frozen=True)
 class RobotSpec:
-    """The simulated robot (book §4.7.4, differential drive)."""
+    """The simulated robot (book §4.7.4): a vehicle configuration, or ``manipulator``."""
 
-    type: str = 'differential_drive'  # noqa: A003 (the scenario key)
+    type: str = 'differential'  # noqa: A003 (the scenario key)
     wheel_radius: float = 0.1                      # c [m]
-    wheel_separation: float = 0.4                  # b [m]
+    wheel_separation: float = 0.4                  # b [m], track of the odometry wheels' axle
+    wheelbase: float = 0.5                         # l [m], steered vehicles
+    base_radius: float = 0.2                       # [m], omni_three
+    half_length: float = 0.2                       # [m], mecanum
+    max_steering_angle: float = 1.2                # [rad], steered vehicles
+    icr_scale: float = 1.0                         # skid_steer
+    traction_time_constant: float = 0.0            # [s] first-order lag; 0: none
+    steering_time_constant: float = 0.0            # [s]
+    longitudinal_slip: float = 0.0                 # [-] in [0, 1)
     initial_pose: tuple[float, ...] = (0.0, 0.0, 0.0)   # x [m], y [m], theta [rad] REP-103
 
 
@@ -46,23 +58,61 @@ class PathSpec:
 
 @dataclass(frozen=True)
 class EncoderSpec:
-    """Wheel encoders (book §7.3.2)."""
+    """Wheel encoders (book §7.3.2): counts per wheel revolution = PPR x decoding x gear."""
 
-    ticks_per_revolution: int = 4096               # [ticks/rev]
+    pulses_per_revolution: int = 1024
+    decoding: int = 4                              # x1, x2 or x4 quadrature
+    gear_ratio: float = 1.0                        # encoder revolutions per wheel revolution
+    missed_count_probability: float = 0.0
+
+
+@dataclass(frozen=True)
+class GyroSpec:
+    """The gyroscope (book §7.7.3): a grade of ``robotica_sim.gyro_model.GYRO_PRESETS``."""
+
+    enabled: bool = False
+    preset: str = 'mems_consumer'
+
+
+@dataclass(frozen=True)
+class CompassSpec:
+    """The compass / magnetometer (book §7.7.2)."""
+
+    enabled: bool = False
+    noise_stddev: float = 2e-7                     # [T] per axis
+    hard_iron: tuple[float, ...] = (0.0, 0.0, 0.0)     # [T]
+    tilt_error: float = 0.0                        # [rad]
+
+
+@dataclass(frozen=True)
+class GpsSpec:
+    """The GPS receiver (book §7.7.5): a preset of ``robotica_sim.gps_model.GPS_PRESETS``."""
+
+    enabled: bool = False
+    preset: str = 'dgps'
+    origin: tuple[float, ...] = (37.41, -6.0, 10.0)    # latitude, longitude [deg], height [m]
 
 
 @dataclass(frozen=True)
 class SensorsSpec:
-    """Sensor emulators of the run."""
+    """Sensor emulators of the run (encoders always; the others when enabled)."""
 
     encoders: EncoderSpec = EncoderSpec()
+    gyro: GyroSpec = GyroSpec()
+    compass: CompassSpec = CompassSpec()
+    gps: GpsSpec = GpsSpec()
 
 
 @dataclass(frozen=True)
 class OdometrySpec:
-    """Dead reckoning settings."""
+    """Dead reckoning and fusion settings (the odometry node)."""
 
     integration_method: str = 'exact_arc'
+    heading_source: str = 'encoders'               # or 'gyro' (needs sensors.gyro)
+    fuse_gps: bool = False                         # needs sensors.gps
+    fuse_compass: bool = False                     # needs sensors.compass
+    wheel_radius_error: float = 0.0                # [-] nominal c = true c (1 + error)
+    track_error: float = 0.0                       # [-] nominal b = true b (1 + error)
 
 
 @dataclass(frozen=True)
@@ -151,8 +201,8 @@ class Scenario:
             (self.duration > 0.0 and math.isfinite(self.duration), 'duration must be > 0 s'),
             (self.pacing in ('lockstep', 'realtime'), 'pacing must be lockstep or realtime'),
             (0.0 < self.step_period <= 1.0, 'step_period must be in (0, 1] s'),
-            (self.robot.type in ('differential_drive', 'manipulator'),
-             'robot.type must be differential_drive or manipulator'),
+            (self.robot.type in VEHICLE_TYPES + ('manipulator',),
+             f'robot.type must be manipulator or one of {VEHICLE_TYPES}'),
             (self.arm.model in ARM_MODELS, f'arm.model must be one of {ARM_MODELS}'),
             (self.arm.model != 'two_link_arm' or (
                 len(self.arm.masses) == len(self.arm.lengths) == 2
@@ -169,11 +219,44 @@ class Scenario:
              'controller.model_masses: [m1, m2] of a two_link_arm model'),
             (self.robot.wheel_radius > 0.0, 'robot.wheel_radius must be > 0 m'),
             (self.robot.wheel_separation > 0.0, 'robot.wheel_separation must be > 0 m'),
+            (min(self.robot.wheelbase, self.robot.base_radius, self.robot.half_length) > 0.0,
+             'robot.wheelbase, base_radius and half_length must be > 0 m'),
+            (0.0 < self.robot.max_steering_angle < math.pi / 2.0,
+             'robot.max_steering_angle must be in (0, pi/2) rad'),
+            (self.robot.icr_scale >= 1.0, 'robot.icr_scale must be >= 1'),
+            (min(self.robot.traction_time_constant, self.robot.steering_time_constant) >= 0.0,
+             'robot.traction_time_constant and steering_time_constant must be >= 0 s'),
+            (0.0 <= self.robot.longitudinal_slip < 1.0,
+             'robot.longitudinal_slip must be in [0, 1)'),
             (len(self.robot.initial_pose) == 3
              and all(math.isfinite(v) for v in self.robot.initial_pose),
              'robot.initial_pose must be 3 finite numbers [x, y, theta]'),
-            (self.sensors.encoders.ticks_per_revolution >= 1,
-             'sensors.encoders.ticks_per_revolution must be >= 1'),
+            (self.sensors.encoders.pulses_per_revolution >= 1
+             and self.sensors.encoders.decoding in (1, 2, 4)
+             and self.sensors.encoders.gear_ratio > 0.0
+             and 0.0 <= self.sensors.encoders.missed_count_probability <= 0.5,
+             'sensors.encoders: pulses_per_revolution >= 1, decoding 1, 2 or 4, gear_ratio > 0, '
+             'missed_count_probability in [0, 0.5]'),
+            (self.sensors.gyro.preset in GYRO_PRESETS,
+             f'sensors.gyro.preset must be one of {tuple(GYRO_PRESETS)}'),
+            (self.sensors.gps.preset in GPS_PRESETS,
+             f'sensors.gps.preset must be one of {tuple(GPS_PRESETS)}'),
+            (len(self.sensors.gps.origin) == 3 and abs(self.sensors.gps.origin[0]) <= 90.0
+             and abs(self.sensors.gps.origin[1]) <= 180.0,
+             'sensors.gps.origin must be [latitude, longitude (deg), height (m)]'),
+            (len(self.sensors.compass.hard_iron) == 3 and self.sensors.compass.noise_stddev >= 0.0,
+             'sensors.compass: hard_iron [x, y, z] T and noise_stddev >= 0 T'),
+            (self.odometry.heading_source in ('encoders', 'gyro'),
+             'odometry.heading_source must be encoders or gyro'),
+            (self.odometry.heading_source != 'gyro' or self.sensors.gyro.enabled,
+             'odometry.heading_source gyro needs sensors.gyro.enabled'),
+            (not self.odometry.fuse_gps or self.sensors.gps.enabled,
+             'odometry.fuse_gps needs sensors.gps.enabled'),
+            (not self.odometry.fuse_compass or self.sensors.compass.enabled,
+             'odometry.fuse_compass needs sensors.compass.enabled'),
+            (min(self.odometry.wheel_radius_error, self.odometry.track_error) > -0.5
+             and max(self.odometry.wheel_radius_error, self.odometry.track_error) < 0.5,
+             'odometry.wheel_radius_error and track_error must be in (-0.5, 0.5)'),
             (self.odometry.integration_method in ODOMETRY_METHODS,
              f'odometry.integration_method must be one of {ODOMETRY_METHODS}'),
         ]
@@ -250,7 +333,7 @@ def _check_sections(data: dict, where: str) -> None:
     manipulator = isinstance(robot, dict) and robot.get('type') == 'manipulator'
     foreign = [k for k in (MOBILE_SECTIONS if manipulator else ARM_SECTIONS) if k in data]
     if foreign:
-        kind = 'manipulator' if manipulator else 'differential_drive'
+        kind = 'manipulator' if manipulator else 'mobile robot'
         raise ScenarioError(f'{where}: section(s) {", ".join(foreign)} do not apply to a '
                             f'{kind} run')
 

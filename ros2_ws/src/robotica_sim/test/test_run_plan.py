@@ -50,8 +50,9 @@ def test_nodes_in_start_order(demo_plan):
 def test_demo_parameters(demo, demo_plan):
     nodes = by_name(demo_plan)
     simulator, odometry = nodes['simulator'].parameters, nodes['odometry'].parameters
-    assert simulator['robot.wheel_radius'] == odometry['wheel_radius'] == 0.1
-    assert simulator['robot.wheel_separation'] == odometry['wheel_separation'] == 0.4
+    assert simulator['vehicle.type'] == 'differential'
+    assert simulator['vehicle.wheel_radius'] == odometry['wheel_radius'] == 0.1
+    assert simulator['vehicle.track'] == odometry['wheel_separation'] == 0.4
     for params in (simulator, odometry):
         assert (params['initial_pose.x'], params['initial_pose.y'],
                 params['initial_pose.theta']) == (0.0, 0.0, 0.0)
@@ -62,13 +63,16 @@ def test_demo_parameters(demo, demo_plan):
     assert odometry['integration_method'] == 'exact_arc'
     assert odometry['odom_frame_id'] == 'odom'
     assert nodes['path_publisher'].parameters['frame_id'] == 'odom'
-    assert nodes['encoder_emulator'].parameters == {'ticks_per_revolution': 4096}
+    assert nodes['encoder_emulator'].parameters == {
+        'pulses_per_revolution': 1024, 'decoding': 4, 'gear_ratio': 1.0,
+        'missed_count_probability': 0.0, 'seed': demo.seed * 10 + 1}
     tracker = nodes['path_tracker'].parameters
     assert tracker == {'law': 'pure_pursuit',
                        'pure_pursuit.lookahead_distance': 0.5,
                        'pure_pursuit.desired_linear_velocity': 0.5,
-                       'pure_pursuit.max_angular_velocity': 1.5}
-    assert all(type(v) is float for k, v in tracker.items() if k != 'law')
+                       'pure_pursuit.max_angular_velocity': 1.5,
+                       'command_type': 'twist', 'wheelbase': 0.5}
+    assert all(type(v) is float for k, v in tracker.items() if k not in ('law', 'command_type'))
 
 
 def test_parameter_values_are_plain_ros_types(demo_plan):
@@ -98,15 +102,16 @@ def test_robot_and_initial_pose_reach_simulator_and_odometry(tmp_path):
           radius: 1.0
         sensors:
           encoders:
-            ticks_per_revolution: 1000
+            pulses_per_revolution: 250
+            decoding: 2
         tracker:
           lookahead_distance: 1
         """)
     nodes = by_name(plan_run(load_scenario(str(path))))
     simulator, odometry = nodes['simulator'].parameters, nodes['odometry'].parameters
-    for params, prefix in ((simulator, 'robot.'), (odometry, '')):
-        assert params[prefix + 'wheel_radius'] == 0.05
-        assert params[prefix + 'wheel_separation'] == 0.3
+    assert simulator['vehicle.wheel_radius'] == odometry['wheel_radius'] == 0.05
+    assert simulator['vehicle.track'] == odometry['wheel_separation'] == 0.3
+    for params in (simulator, odometry):
         assert params['initial_pose.x'] == 1.0
         assert params['initial_pose.y'] == -2.0
         assert params['initial_pose.theta'] == 0.5
@@ -117,7 +122,8 @@ def test_robot_and_initial_pose_reach_simulator_and_odometry(tmp_path):
     assert odometry['integration_method'] == 'midpoint'
     assert odometry['odom_frame_id'] == 'map'
     assert nodes['path_publisher'].parameters['frame_id'] == 'map'
-    assert nodes['encoder_emulator'].parameters['ticks_per_revolution'] == 1000
+    assert nodes['encoder_emulator'].parameters['pulses_per_revolution'] == 250
+    assert nodes['encoder_emulator'].parameters['decoding'] == 2
     gain = nodes['path_tracker'].parameters['pure_pursuit.lookahead_distance']
     assert type(gain) is float and gain == 1.0   # an integer gain is passed as a float
 

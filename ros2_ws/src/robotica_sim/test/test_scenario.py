@@ -27,14 +27,15 @@ def test_demo_scenario():
     assert demo.seed == 1
     assert demo.pacing == 'lockstep'
     assert demo.step_period == 0.02
-    assert demo.robot.type == 'differential_drive'
+    assert demo.robot.type == 'differential'
     assert (demo.robot.wheel_radius, demo.robot.wheel_separation) == (0.1, 0.4)
     assert demo.robot.initial_pose == (0.0, 0.0, 0.0)
     assert demo.path.shape == 'rounded_rectangle'
     assert demo.path.frame_id == 'odom'
     assert demo.path.args == {'width': 4.0, 'height': 3.0, 'corner_radius': 0.8,
                               'spacing': 0.05}
-    assert demo.sensors.encoders.ticks_per_revolution == 4096
+    encoders = demo.sensors.encoders
+    assert encoders.pulses_per_revolution * encoders.decoding == 4096
     assert demo.odometry.integration_method == 'exact_arc'
     assert demo.tracker.law == 'pure_pursuit'
     assert demo.tracker.gains == {'lookahead_distance': 0.5, 'desired_linear_velocity': 0.5,
@@ -101,16 +102,20 @@ def test_free_form_sections_are_folded(tmp_path):
     ('duration: 0.0\n', ['duration']),
     ('duration: -1.0\n', ['duration']),
     ('step_period: 2.0\n', ['step_period']),
-    ('robot:\n  type: ackermann\n', ['robot.type']),
     ('robot:\n  wheel_radius: -0.1\n', ['robot.wheel_radius']),
     ('robot:\n  wheel_separation: 0\n', ['robot.wheel_separation']),
     ('robot: 3\n', ['robot']),
     ('path: [1, 2]\n', ['path']),
     ('tracker: pure_pursuit\n', ['tracker']),
-    ('sensors:\n  encoders:\n    ticks_per_revolution: 0\n',
-     ['sensors.encoders.ticks_per_revolution']),
-    ('sensors:\n  encoders:\n    ticks_per_revolution: 4096.0\n',
-     ['sensors.encoders.ticks_per_revolution']),
+    ('sensors:\n  encoders:\n    pulses_per_revolution: 0\n',
+     ['sensors.encoders', 'pulses_per_revolution']),
+    ('sensors:\n  encoders:\n    pulses_per_revolution: 4096.0\n',
+     ['sensors.encoders.pulses_per_revolution']),
+    ('sensors:\n  encoders:\n    decoding: 3\n', ['sensors.encoders', 'decoding']),
+    ('sensors:\n  gps:\n    preset: glonass\n', ['sensors.gps.preset']),
+    ('odometry:\n  heading_source: gyro\n', ['sensors.gyro.enabled']),
+    ('odometry:\n  fuse_gps: true\n', ['sensors.gps.enabled']),
+    ('robot:\n  type: hovercraft\n', ['robot.type']),
     ('name: 5\n', ['name']),
     ('odometry:\n  integration_method: 2\n', ['odometry.integration_method']),
     ('robot:\n  type: manipulator\narm:\n  model: scara\n', ['arm.model']),

@@ -2,9 +2,15 @@
 Path tracker node: follows a ``nav_msgs/Path`` from the pose on ``odom``; publishes ``cmd_vel``.
 
 The control law is chosen by ``law`` (book chapter 9; ``pure_pursuit``, §9.3.1, for now) and
-lives in :mod:`robotica_ctrl.mobile`. Topics: ``odom`` (nav_msgs/Odometry) and ``~/path``
-(nav_msgs/Path, transient-local) in; ``cmd_vel`` (geometry_msgs/Twist) and ``~/tracking_error``
-(robotica_msgs/TrackingError, stamped with the pose it was computed from) out.
+lives in :mod:`robotica_ctrl.mobile`; ``open_loop`` plays the profile ``open_loop.times``,
+``open_loop.linear`` and ``open_loop.angular`` against the pose's time stamp instead, without
+feedback or path (the book's Simulink examples, Ej. 4.8 and 4.9). Topics: ``odom``
+(nav_msgs/Odometry) and ``~/path`` (nav_msgs/Path, transient-local) in; ``cmd_vel``
+(geometry_msgs/Twist) and ``~/tracking_error`` (robotica_msgs/TrackingError, stamped with the
+pose it was computed from) out. With
+``command_type`` = ``steering`` (tricycle, bicycle, Ackermann) the command goes out on
+``vehicle_command`` (robotica_msgs/VehicleCommand) instead: the law's speed v and the steering
+angle of its curvature, α = atan(l ω / v) (book (4.119), (4.121)), l = ``wheelbase``.
 
 With ``control_rate`` = 0 the law runs once per pose message (what a lockstep simulation needs:
 every step is answered exactly once); with ``control_rate`` > 0 it runs on a timer from the
@@ -18,16 +24,19 @@ import math
 from geometry_msgs.msg import Point, Twist
 from nav_msgs.msg import Odometry, Path
 from rcl_interfaces.msg import SetParametersResult
+from rclpy.experimental import EventsExecutor
 from rclpy.node import Node
+from robotica_ctrl.mobile.open_loop import OpenLoopProfile
 from robotica_ctrl.mobile.path import PolylinePath
 from robotica_ctrl.mobile.pure_pursuit import PurePursuit, PurePursuitParams
 from robotica_kin.nodes.convert import path_points, pose2d_from_odometry, stamp_to_seconds
 from robotica_kin.nodes.entry_point import run_node
 from robotica_kin.nodes.parameters import declare
 from robotica_kin.nodes.qos import COMMAND_PUB_QOS, LATCHED_QOS, STREAM_PUB_QOS, STREAM_SUB_QOS
-from robotica_msgs.msg import TrackingError
+from robotica_msgs.msg import TrackingError, VehicleCommand
 
-LAWS = ('pure_pursuit',)
+LAWS = ('pure_pursuit', 'open_loop')
+COMMAND_TYPES = ('twist', 'steering')
 GAIN_DESCRIPTIONS = {
     'lookahead_distance': ('Look-ahead arc distance L [m], book (9.7)', 0.01, 100.0),
     'desired_linear_velocity': ('Cruise speed [m/s]', 1e-3, 100.0),
@@ -57,6 +66,23 @@ class PathTrackerNode(Node):
             name: declare(self, 'pure_pursuit.' + name, float(getattr(defaults, name)),
                           description, low=low, high=high)
             for name, (description, low, high) in GAIN_DESCRIPTIONS.items()})
+        self._command_type = declare(self, 'command_type', 'twist',
+                                     f'Command: one of {COMMAND_TYPES} (cmd_vel Twist, or '
+                                     'vehicle_command VehicleCommand for steered vehicles)',
+                                     read_only=True)
+        if self._command_type not in COMMAND_TYPES:
+            raise ValueError(f'command_type must be one of {COMMAND_TYPES}, got '
+                             f'{self._command_type!r}')
+        self._wheelbase = declare(self, 'wheelbase', 0.5,
+                                  'Wheelbase l [m] of a steered vehicle (command_type steering)',
+                                  low=1e-3, high=100.0, read_only=True)
+        self._profile = OpenLoopProfile(
+            declare(self, 'open_loop.times', [0.0], 'open_loop: times of the profile rows [s]',
+                    read_only=True),
+            declare(self, 'open_loop.linear', [0.0], 'open_loop: forward speed v [m/s] per row',
+                    read_only=True),
+            declare(self, 'open_loop.angular', [0.0], 'open_loop: yaw rate [rad/s] per row',
+                    read_only=True))
         self._control_rate = declare(self, 'control_rate', 0.0,
                                      'Control rate [Hz]; 0: once per pose message',
                                      low=0.0, high=1000.0, read_only=True)
@@ -70,7 +96,11 @@ class PathTrackerNode(Node):
         self._path_frame = ''
         self._pose_msg = None
         self._reported = set()
-        self._cmd_pub = self.create_publisher(Twist, 'cmd_vel', COMMAND_PUB_QOS)
+        if self._command_type == 'twist':
+            self._cmd_pub = self.create_publisher(Twist, 'cmd_vel', COMMAND_PUB_QOS)
+        else:
+            self._cmd_pub = self.create_publisher(VehicleCommand, 'vehicle_command',
+                                                  COMMAND_PUB_QOS)
         self._error_pub = self.create_publisher(TrackingError, '~/tracking_error',
                                                 STREAM_PUB_QOS)
         self.create_subscription(Path, '~/path', self._on_path, LATCHED_QOS)
@@ -128,9 +158,24 @@ class PathTrackerNode(Node):
         if reason not in self._reported:
             self._reported.add(reason)
             self.get_logger().warn(reason)
-        self._cmd_pub.publish(Twist())
+        self._publish_command(0.0, 0.0)
+
+    def _publish_command(self, linear: float, angular: float) -> None:
+        """Publish (v [m/s], ω [rad/s]) as a Twist or as a speed and a steering angle."""
+        if self._command_type == 'twist':
+            twist = Twist()
+            twist.linear.x = linear
+            twist.angular.z = angular
+            self._cmd_pub.publish(twist)
+            return
+        # α = atan(l γ) with γ = ω / v; stopped (v = 0), the wheel keeps straight.
+        steering = math.atan(self._wheelbase * angular / linear) if linear != 0.0 else 0.0
+        self._cmd_pub.publish(VehicleCommand(speed=linear, steering_angle=steering))
 
     def _control(self, msg: Odometry) -> None:
+        if self._law == 'open_loop':
+            self._publish_command(*self._profile.command(stamp_to_seconds(msg.header.stamp)))
+            return
         if self._tracker is None:
             self._stop('no path received on ~/path yet: holding still')
             return
@@ -144,10 +189,7 @@ class PathTrackerNode(Node):
         except ValueError as err:
             self._stop(f'pose refused ({err}): stopping')
             return
-        twist = Twist()
-        twist.linear.x = command.linear
-        twist.angular.z = command.angular
-        self._cmd_pub.publish(twist)
+        self._publish_command(command.linear, command.angular)
         if command.finished and 'finished' not in self._reported:
             self._reported.add('finished')
             self.get_logger().info('path finished: stopped at its end')
@@ -164,4 +206,4 @@ class PathTrackerNode(Node):
 
 def main(args=None) -> None:
     """Run the path tracker until Ctrl-C."""
-    run_node(PathTrackerNode, args)
+    run_node(PathTrackerNode, args, executor_factory=EventsExecutor)

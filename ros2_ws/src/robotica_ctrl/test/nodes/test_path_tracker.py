@@ -12,7 +12,7 @@ import pytest
 from rcl_interfaces.msg import Parameter, ParameterType, ParameterValue
 from rcl_interfaces.srv import SetParameters
 from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
-from robotica_msgs.msg import TrackingError
+from robotica_msgs.msg import TrackingError, VehicleCommand
 
 pytestmark = pytest.mark.ros
 QOS = QoSProfile(depth=10, reliability=ReliabilityPolicy.RELIABLE)
@@ -98,3 +98,34 @@ def test_invalid_gain_is_refused_with_reason(tracker, call):
     result = response.results[0]
     assert not result.successful
     assert 'min_approach_velocity' in result.reason
+
+
+def test_open_loop_profile_as_steering_commands(start_node, ros_node, spin, publish):
+    # Ej. 4.8: v = 1 m/s, ω = 1 rad/s on a tricycle of l = 1.5 m: α = atan(l ω / v) = 56.31°.
+    # The profile ramps v from 1 to 2 m/s over 10 s: at t = 5 s, v = 1.5 m/s.
+    node, executor = ros_node
+    start_node('robotica_ctrl', 'path_tracker', '-p', 'law:=open_loop',
+               '-p', 'command_type:=steering', '-p', 'wheelbase:=1.5',
+               '-p', 'open_loop.times:=[0.0, 10.0]', '-p', 'open_loop.linear:=[1.0, 2.0]',
+               '-p', 'open_loop.angular:=[1.0, 1.0]')
+    commands = []
+    node.create_subscription(VehicleCommand, 'vehicle_command', commands.append, QOS)
+    odom = node.create_publisher(Odometry, 'odom', QOS)
+    assert spin(executor, lambda: odom.get_subscription_count() > 0)
+    msg = _odom(0.0, 0.0, 0.0)
+    assert publish(executor, odom, msg, lambda: commands)
+    assert commands[-1].speed == pytest.approx(1.0, abs=1e-12)
+    assert math.degrees(commands[-1].steering_angle) == pytest.approx(56.3099, abs=1e-4)
+    msg.header.stamp.sec = 5
+    n = len(commands)
+    assert publish(executor, odom, msg, lambda: len(commands) > n)
+    assert commands[-1].speed == pytest.approx(1.5, abs=1e-12)
+    assert commands[-1].steering_angle == pytest.approx(math.atan(1.5 / 1.5), abs=1e-12)
+
+
+def test_bad_open_loop_profile_is_refused(start_node, read_output):
+    proc = start_node('robotica_ctrl', 'path_tracker', '-p', 'law:=open_loop',
+                      '-p', 'open_loop.times:=[0.0, 0.0]', '-p', 'open_loop.linear:=[1.0, 2.0]',
+                      '-p', 'open_loop.angular:=[1.0, 1.0]')
+    assert proc.wait(timeout=30) == 2
+    assert 'times must increase strictly' in read_output(proc)

@@ -1,3 +1,4 @@
-"""Mobile-robot kinematics (Ollero 2001, §4.7): configuration models and odometry."""
+"""Mobile-robot kinematics (Ollero 2001, §4.7): configuration models, odometry and the EKF."""
 
-__all__ = ['differential_drive', 'odometry']
+__all__ = ['ackermann', 'bicycle', 'differential_drive', 'ekf_localization', 'odometry',
+           'omnidirectional', 'skid_steer', 'tricycle', 'unicycle', 'vehicles']

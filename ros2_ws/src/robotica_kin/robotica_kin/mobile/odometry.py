@@ -23,8 +23,6 @@ __all__ = ['DiffDriveOdometry', 'ODOMETRY_METHODS', 'odometry_increment']
 ODOMETRY_METHODS = ('euler', 'midpoint', 'exact_arc')
 """Pose-update rules of :func:`odometry_increment`."""
 
-_MIN_ARC_ANGLE = 1e-9  # |Δθ| [rad] below which 'exact_arc' uses the midpoint form (no 0/0)
-
 
 def _as_pose(pose: ArrayLike) -> Pose2D:
     array = np.asarray(pose, dtype=np.float64)
@@ -50,8 +48,10 @@ def odometry_increment(
     * ``'midpoint'``: the same with the heading θ + Δθ/2.
     * ``'exact_arc'``: the circular arc of book (4.93) in REP-103 form,
       x += (ΔU_c/Δθ)(sin(θ+Δθ) - sin θ), y -= (ΔU_c/Δθ)(cos(θ+Δθ) - cos θ); exact when the
-      wheel speeds are constant over the sample (§4.7.1). For |Δθ| < 1e-9 rad it uses the
-      midpoint form, whose relative difference from the arc, Δθ²/24, is then < 1e-19.
+      wheel speeds are constant over the sample (§4.7.1). It is evaluated as the equal chord
+      along the mid-heading, x += ΔU_c (sin h / h) cos(θ + h), y += ΔU_c (sin h / h) sin(θ + h)
+      with h = Δθ/2, which has no 0/0 at Δθ = 0 and none of the cancellation of the difference
+      of sines for small turns.
 
     Parameters
     ----------
@@ -89,10 +89,11 @@ def odometry_increment(
         raise ValueError(f'method must be one of {ODOMETRY_METHODS}, got {method!r}')
     delta_c = 0.5 * (delta_left + delta_right)
     delta_theta = (delta_right - delta_left) / wheel_separation
-    if method == 'exact_arc' and abs(delta_theta) >= _MIN_ARC_ANGLE:
-        radius = delta_c / delta_theta
-        x += radius * (math.sin(theta + delta_theta) - math.sin(theta))
-        y -= radius * (math.cos(theta + delta_theta) - math.cos(theta))
+    if method == 'exact_arc':
+        half = 0.5 * delta_theta
+        chord = delta_c * (math.sin(half) / half if half != 0.0 else 1.0)
+        x += chord * math.cos(theta + half)
+        y += chord * math.sin(theta + half)
     else:
         heading = theta + (delta_theta if method == 'euler' else 0.5 * delta_theta)
         x += delta_c * math.cos(heading)

@@ -53,9 +53,9 @@ def pose2d_from_odometry(msg: Odometry) -> NDArray[np.float64]:
 
 
 def odometry_message(t: float, frame_id: str, child_frame_id: str, pose: ArrayLike,
-                     twist: tuple[float, float]) -> Odometry:
+                     twist: tuple[float, ...]) -> Odometry:
     """
-    Build an ``Odometry``: pose ``(x, y, theta)`` in ``frame_id``, twist (v, w) in the child.
+    Build an ``Odometry``: pose ``(x, y, theta)`` in ``frame_id``, twist in the child frame.
 
     Parameters
     ----------
@@ -68,7 +68,8 @@ def odometry_message(t: float, frame_id: str, child_frame_id: str, pose: ArrayLi
     pose : array_like, shape (3,)
         Planar pose [m, m, rad].
     twist : tuple of float
-        Forward speed [m/s] and yaw rate [rad/s], in ``child_frame_id``.
+        (v, ω): forward speed [m/s] and yaw rate [rad/s], or (vx, vy, ω) with the lateral
+        speed [m/s] of a holonomic base, in ``child_frame_id``.
 
     """
     x, y, theta = (float(v) for v in np.asarray(pose, dtype=float))
@@ -79,8 +80,11 @@ def odometry_message(t: float, frame_id: str, child_frame_id: str, pose: ArrayLi
     msg.pose.pose.position.x = x
     msg.pose.pose.position.y = y
     msg.pose.pose.orientation = yaw_to_quaternion(theta)
+    if len(twist) not in (2, 3):
+        raise ValueError(f'twist must be (v, w) or (vx, vy, w), got {twist!r}')
     msg.twist.twist.linear.x = float(twist[0])
-    msg.twist.twist.angular.z = float(twist[1])
+    msg.twist.twist.linear.y = float(twist[1]) if len(twist) == 3 else 0.0
+    msg.twist.twist.angular.z = float(twist[-1])
     return msg
 
 

@@ -14,31 +14,35 @@ import dataclasses
 import json
 import sys
 
-from robotica_sim.arm_benchmark import (ArmBenchmarkRow, core_benchmark, loop_benchmark,
-                                        round_trip_benchmark)
+from robotica_sim.arm_benchmark import core_benchmark, loop_benchmark, round_trip_benchmark
 from robotica_sim.kinematics_benchmark import BenchmarkRow, run_kinematics_benchmark
+from robotica_sim.measurement_row import MeasurementRow
+from robotica_sim.mobile_benchmark import mobile_core_benchmark
 
-HELP = 'measure the speed of the kinematics or of the arm loop (robotica bench kin|arm)'
+HELP = ('measure the speed of the kinematics, the arm loop or the mobile loop '
+        '(robotica bench kin|arm|mobile)')
 EPILOG = """examples:
   robotica bench kin                       1000 configurations per robot, Markdown table
   robotica bench kin --count 200 --json    quicker, machine-readable
   robotica bench arm                       core, DDS round trip and ROS loop of the PUMA 560
   robotica bench arm --loop-duration 0     without the (slow) full ROS loop
+  robotica bench mobile                    core and ROS loop of the figure eight, all sensors
 """
-SUITES = ('kin', 'arm')
+SUITES = ('kin', 'arm', 'mobile')
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Add the arguments of ``robotica bench``."""
     parser.add_argument('suite', choices=SUITES,
-                        help='what to measure: kin = kinematics, arm = the manipulator loop')
+                        help='what to measure: kin = kinematics, arm = the manipulator loop, '
+                        'mobile = the vehicle loop with every sensor and the EKF')
     parser.add_argument('--count', type=int, default=1000,
                         help='kin: random configurations per robot; arm: simulated steps of '
                         'the core and DDS round trips (default 1000; arm: at least 5000 steps '
                         'are used for the core)')
-    parser.add_argument('--loop-duration', type=float, default=5.0,
-                        help='arm: simulated seconds of the full ROS loop; 0 skips it '
-                        '(default 5)')
+    parser.add_argument('--loop-duration', type=float,
+                        help='arm, mobile: simulated seconds of the full ROS loop; 0 skips it '
+                        '(default 5 for arm, 60 for mobile)', default=None)
     parser.add_argument('--baseline-ik-count', type=int, default=100,
                         help='poses given to the slow baseline ikine (default 100)')
     parser.add_argument('--seed', type=int, default=0, help='seed of the configurations')
@@ -71,6 +75,8 @@ def main(args: argparse.Namespace) -> int:
 
     if args.suite == 'arm':
         return _arm(args, progress)
+    if args.suite == 'mobile':
+        return _mobile(args, progress)
     rows = run_kinematics_benchmark(args.count, args.baseline_ik_count, args.seed, progress)
     if args.json:
         print(json.dumps([dataclasses.asdict(row) for row in rows], indent=2))
@@ -79,17 +85,42 @@ def main(args: argparse.Namespace) -> int:
     return 0
 
 
-def _arm(args: argparse.Namespace, progress) -> int:
-    if args.loop_duration < 0.0:
+def _loop_duration(args: argparse.Namespace, default: float) -> float | None:
+    duration = default if args.loop_duration is None else args.loop_duration
+    if duration < 0.0:
         print('robotica bench: --loop-duration must be >= 0', file=sys.stderr)
+        return None
+    return duration
+
+
+def _arm(args: argparse.Namespace, progress) -> int:
+    duration = _loop_duration(args, 5.0)
+    if duration is None:
         return 2
     progress('core: simulator and controller in one loop')
-    rows: list[ArmBenchmarkRow] = core_benchmark(max(args.count, 5000))
+    rows: list[MeasurementRow] = core_benchmark(max(args.count, 5000))
     progress('DDS round trips through an echo process')
     rows += round_trip_benchmark(args.count)
-    if args.loop_duration > 0.0:
-        progress(f'full ROS loop, {args.loop_duration:g} s simulated')
-        rows += loop_benchmark(args.loop_duration)
+    if duration > 0.0:
+        progress(f'full ROS loop, {duration:g} s simulated')
+        rows += loop_benchmark(duration)
+    return _print_rows(args, rows)
+
+
+def _mobile(args: argparse.Namespace, progress) -> int:
+    duration = _loop_duration(args, 60.0)
+    if duration is None:
+        return 2
+    progress('core: vehicle, sensors, EKF and pure pursuit in one loop, 60 s simulated')
+    rows = mobile_core_benchmark(60.0, args.seed)
+    if duration > 0.0:
+        progress(f'full ROS loop, {duration:g} s simulated')
+        rows += loop_benchmark(duration, 'figure_eight_differential',
+                               '8 node processes (simulator, 4 sensors, odometry, tracker, path)')
+    return _print_rows(args, rows)
+
+
+def _print_rows(args: argparse.Namespace, rows: list[MeasurementRow]) -> int:
     if args.json:
         print(json.dumps([dataclasses.asdict(row) for row in rows], indent=2))
     else:

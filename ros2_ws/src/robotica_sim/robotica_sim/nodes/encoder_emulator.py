@@ -1,18 +1,24 @@
 """
-Encoder emulator node: wheel angles (``joint_states``) -> quantised ticks (``wheel_encoders``).
+Encoder emulator node: wheel angles (``joint_states``) -> quadrature counts (``wheel_encoders``).
 
-Each ``sensor_msgs/JointState`` from the simulator gives the cumulative angles of the two drive
-wheels; the node publishes one ``robotica_msgs/WheelEncoders`` with the same stamp, counts
-quantised by :func:`robotica_sim.encoder_model.quantize_ticks`.
+Each ``sensor_msgs/JointState`` from the simulator gives the cumulative angles of the two
+odometry wheels; the node publishes one ``robotica_msgs/WheelEncoders`` with the same stamp. Each
+wheel's counter is a :class:`robotica_sim.encoder_model.EncoderModel` (book §7.3.2, slides
+§13.6): ``pulses_per_revolution`` × ``decoding`` (×1/×2/×4 quadrature) × ``gear_ratio`` counts
+per wheel revolution, floor quantisation, and edges missed with ``missed_count_probability``
+(reproducible from ``seed``). Wheel-radius and track errors are a mismatch between the simulated
+vehicle and the odometry's nominal geometry: set them there.
 """
 import math
 
+import numpy as np
+from rclpy.experimental import EventsExecutor
 from rclpy.node import Node
 from robotica_kin.nodes.entry_point import run_node
 from robotica_kin.nodes.parameters import declare
 from robotica_kin.nodes.qos import STREAM_PUB_QOS, STREAM_SUB_QOS
 from robotica_msgs.msg import WheelEncoders
-from robotica_sim.encoder_model import quantize_ticks
+from robotica_sim.encoder_model import EncoderModel, EncoderParams
 from sensor_msgs.msg import JointState
 
 
@@ -21,10 +27,24 @@ class EncoderEmulatorNode(Node):
 
     def __init__(self) -> None:
         super().__init__('encoder_emulator')
-        self._ticks_per_rev = declare(
-            self, 'ticks_per_revolution', 4096,
-            'Counts per wheel revolution [ticks/rev] (PPR x decoding x gear ratio), book §7.3.2',
-            low=1, high=10_000_000, read_only=True)
+        params = EncoderParams(
+            pulses_per_revolution=declare(
+                self, 'pulses_per_revolution', 1024,
+                'Pulses of one channel per encoder (motor) revolution, book §7.3.2', low=1,
+                high=10_000_000, read_only=True),
+            decoding=declare(self, 'decoding', 4, 'Quadrature decoding: 1, 2 or 4 counts per '
+                             'pulse', low=1, high=4, read_only=True),
+            gear_ratio=declare(self, 'gear_ratio', 1.0, 'Encoder revolutions per wheel '
+                               'revolution (the encoder on the motor shaft)', low=1e-3,
+                               high=1e4, read_only=True),
+            missed_count_probability=declare(
+                self, 'missed_count_probability', 0.0, 'Probability that an edge is not '
+                'counted', low=0.0, high=0.5, read_only=True))
+        seed = declare(self, 'seed', 0, 'Seed of the missed-count draws', low=0,
+                       high=2**31 - 1, read_only=True)
+        left, right = (np.random.default_rng(s) for s in np.random.SeedSequence(seed).spawn(2))
+        self._counters = (EncoderModel(params, left), EncoderModel(params, right))
+        self._ticks_per_rev = params.ticks_per_revolution
         self._joints = (
             declare(self, 'left_wheel_joint', 'left_wheel_joint', 'Left wheel joint name',
                     read_only=True),
@@ -35,6 +55,8 @@ class EncoderEmulatorNode(Node):
         self._pub = self.create_publisher(WheelEncoders, 'wheel_encoders', STREAM_PUB_QOS)
         self.create_subscription(JointState, 'joint_states', self._on_joint_states,
                                  STREAM_SUB_QOS)
+        self.get_logger().info(f'{self._ticks_per_rev} counts per wheel revolution, missed '
+                               f'counts with p = {params.missed_count_probability}')
 
     def _on_joint_states(self, msg: JointState) -> None:
         try:
@@ -47,8 +69,8 @@ class EncoderEmulatorNode(Node):
             self.get_logger().warn('non-finite wheel angle; reading skipped',
                                    throttle_duration_sec=5.0)
             return
-        out = WheelEncoders(left_ticks=quantize_ticks(angles[0], self._ticks_per_rev),
-                            right_ticks=quantize_ticks(angles[1], self._ticks_per_rev),
+        left, right = (counter.ticks(a) for counter, a in zip(self._counters, angles))
+        out = WheelEncoders(left_ticks=left, right_ticks=right,
                             ticks_per_revolution=self._ticks_per_rev)
         out.header.stamp = msg.header.stamp
         out.header.frame_id = self._frame
@@ -57,4 +79,4 @@ class EncoderEmulatorNode(Node):
 
 def main(args=None) -> None:
     """Run the encoder emulator until Ctrl-C."""
-    run_node(EncoderEmulatorNode, args)
+    run_node(EncoderEmulatorNode, args, executor_factory=EventsExecutor)

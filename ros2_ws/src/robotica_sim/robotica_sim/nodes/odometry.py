@@ -1,72 +1,229 @@
 """
-Odometry node: dead reckoning from wheel-encoder ticks -> ``odom`` (nav_msgs/Odometry).
+Odometry node: dead reckoning from wheel-encoder ticks, fused with gyro, compass and GPS.
 
-The maths is :class:`robotica_kin.mobile.odometry.DiffDriveOdometry` (the slides' update, book
-§4.7.5; exact arc (4.93) by default). The pose is in ``odom_frame_id``, the twist in
-``base_frame_id`` (REP-105); the odometry starts at ``initial_pose``.
+Every ``wheel_encoders`` reading (robotica_msgs/WheelEncoders) moves the estimate by the wheels'
+travel since the previous one, by the slides' equations (catalog §13.6): ΔU = C_m Δticks with
+C_m = 2π c / ticks_per_revolution, ΔU_c = (ΔU_l + ΔU_r)/2, Δθ = (ΔU_r − ΔU_l)/b, applied with
+``integration_method`` (``euler``, ``midpoint`` or the exact arc (4.93), book §4.7.5). With
+``heading_source`` = ``gyro`` the heading increment is instead the integral of the yaw rate of
+``imu/data`` (sensor_msgs/Imu) since the previous reading: the encoders then give the distance
+only (synchronous drive, skid steer, slipping wheels).
+
+The estimate and its covariance are those of
+:class:`robotica_kin.mobile.ekf_localization.EkfLocalization`: the prediction propagates the
+odometry error model ``odometry_noise.*`` (or the gyro's reported variance), and, when enabled,
+``gps/fix`` (sensor_msgs/NavSatFix, converted to the local ENU frame of ``origin.*``) and
+``compass/heading`` (sensor_msgs/Imu orientation) correct it, each behind a chi-square gate
+(rejections are counted and logged). A GPS error that is correlated in time (every preset's
+is) makes a filter that takes each fix as independent overconfident; ``gps_bias.stddev`` > 0
+estimates it as two more, Gauss–Markov, states (``gps_bias.correlation_time``). Without fusion
+it is pure dead reckoning with a growing covariance. Measurements are applied when they
+arrive: a fix's latency (0.1 s for DGPS) and a gyro sample that arrives after the encoder
+reading of the same step (its turn then counts at the next reading) are not compensated. Publishes ``odom`` (nav_msgs/Odometry: pose in
+``odom_frame_id``, twist in ``base_frame_id``, REP-105, pose covariance of x, y and yaw) at each
+encoder reading.
 """
+import math
+
 from nav_msgs.msg import Odometry
+import numpy as np
+from rclpy.experimental import EventsExecutor
 from rclpy.node import Node
-from robotica_kin.mobile.differential_drive import DifferentialDriveParams
-from robotica_kin.mobile.odometry import DiffDriveOdometry, ODOMETRY_METHODS
+from robotica_kin.geodetic import GeodeticOrigin
+from robotica_kin.mobile.ekf_localization import (EkfLocalization, increment_between_poses,
+                                                  OdometryNoise)
+from robotica_kin.mobile.odometry import odometry_increment, ODOMETRY_METHODS
 from robotica_kin.nodes.convert import odometry_message, stamp_to_seconds
 from robotica_kin.nodes.entry_point import run_node
 from robotica_kin.nodes.parameters import declare
 from robotica_kin.nodes.qos import STREAM_PUB_QOS, STREAM_SUB_QOS
 from robotica_msgs.msg import WheelEncoders
+from sensor_msgs.msg import Imu, NavSatFix, NavSatStatus
+
+HEADING_SOURCES = ('encoders', 'gyro')
 
 
 class OdometryNode(Node):
-    """Integrate encoder ticks into a pose estimate."""
+    """Integrate encoder ticks (and gyro rates) into a pose estimate; fuse GPS and compass."""
 
     def __init__(self) -> None:
         super().__init__('odometry')
-        self._robot = DifferentialDriveParams(
-            wheel_radius=declare(self, 'wheel_radius', 0.1, 'Wheel radius c [m], book (4.109)',
-                                 low=1e-3, high=10.0, read_only=True),
-            wheel_separation=declare(self, 'wheel_separation', 0.4,
-                                     'Track b between the drive wheels [m], book (4.110)',
-                                     low=1e-3, high=100.0, read_only=True))
+        self._radius = declare(self, 'wheel_radius', 0.1, 'Nominal wheel radius c [m], book '
+                               '(4.109)', low=1e-3, high=10.0, read_only=True)
+        self._track = declare(self, 'wheel_separation', 0.4,
+                              'Nominal track b between the odometry wheels [m], book (4.110)',
+                              low=1e-3, high=100.0, read_only=True)
         self._method = declare(self, 'integration_method', 'exact_arc',
                                f'Pose update: one of {ODOMETRY_METHODS} (slides §13.6, book '
                                '(4.93))', read_only=True)
         if self._method not in ODOMETRY_METHODS:
             raise ValueError(f'integration_method must be one of {ODOMETRY_METHODS}, '
                              f'got {self._method!r}')
-        self._initial_pose = [
-            declare(self, 'initial_pose.' + k, 0.0, d, low=-1e6, high=1e6, read_only=True)
-            for k, d in (('x', 'Initial x [m] in the odom frame'),
-                         ('y', 'Initial y [m] in the odom frame'),
-                         ('theta', 'Initial heading [rad], REP-103'))]
+        self._heading_source = declare(self, 'heading_source', 'encoders',
+                                       f'Heading increments from: one of {HEADING_SOURCES}',
+                                       read_only=True)
+        if self._heading_source not in HEADING_SOURCES:
+            raise ValueError(f'heading_source must be one of {HEADING_SOURCES}, got '
+                             f'{self._heading_source!r}')
+        pose = [declare(self, 'initial_pose.' + k, 0.0, d, low=-1e6, high=1e6, read_only=True)
+                for k, d in (('x', 'Initial x [m] in the odom frame'),
+                             ('y', 'Initial y [m] in the odom frame'),
+                             ('theta', 'Initial heading [rad], REP-103'))]
+        sigma0 = [declare(self, 'initial_stddev.' + k, 0.0, d, low=0.0, high=1e6,
+                          read_only=True)
+                  for k, d in (('position', 'Initial position std. dev. [m] per axis'),
+                               ('heading', 'Initial heading std. dev. [rad]'))]
+        defaults = OdometryNoise()
+        noise = OdometryNoise(**{
+            k: declare(self, 'odometry_noise.' + k, getattr(defaults, k), d, low=0.0, high=1.0,
+                       read_only=True)
+            for k, d in (('k_distance', 'Variance of the travelled distance per metre [m²/m]'),
+                         ('k_heading', 'Heading variance per metre travelled [rad²/m]'),
+                         ('k_turn', 'Heading variance per radian turned [rad²/rad]'))})
+        bias = [declare(self, 'gps_bias.' + k, default, d, low=low, high=high, read_only=True)
+                for k, default, d, low, high in (
+                    ('stddev', 0.0, 'Std. dev. of the time-correlated GPS error per axis [m]; '
+                     '> 0 estimates it as two Gauss-Markov states', 0.0, 1e3),
+                    ('correlation_time', 60.0, 'Its correlation time [s]', 1e-3, 1e6),
+                    ('white_stddev', 0.0, 'Std. dev. of the white part of a fix per axis [m]; '
+                     '0: the fix covariance minus the bias variance', 0.0, 1e3))]
+        self._white_variance = bias[2] ** 2 if bias[2] > 0.0 else None
+        self._ekf = EkfLocalization(pose, np.diag([sigma0[0] ** 2, sigma0[0] ** 2,
+                                                   sigma0[1] ** 2]), noise,
+                                    position_bias_stddev=bias[0],
+                                    position_bias_correlation_time=bias[1])
+        self._fuse_gps = declare(self, 'fuse_gps', False, 'Correct with gps/fix (EKF)',
+                                 read_only=True)
+        self._fuse_compass = declare(self, 'fuse_compass', False,
+                                     'Correct with compass/heading (EKF)', read_only=True)
+        self._origin = GeodeticOrigin(
+            declare(self, 'origin.latitude', 37.41, 'Latitude of the odom origin [deg]',
+                    low=-90.0, high=90.0, read_only=True),
+            declare(self, 'origin.longitude', -6.0, 'Longitude of the odom origin [deg]',
+                    low=-180.0, high=180.0, read_only=True),
+            declare(self, 'origin.altitude', 10.0, 'Height of the origin [m], WGS-84',
+                    low=-1e4, high=1e5, read_only=True))
         self._odom_frame = declare(self, 'odom_frame_id', 'odom', 'Frame of the pose',
                                    read_only=True)
         self._base_frame = declare(self, 'base_frame_id', 'base_link', 'Frame of the robot',
                                    read_only=True)
-        self._odometry = None
-        self._ticks_per_rev = 0
+        self._last_ticks: tuple[int, int, float] | None = None
+        self._twist = (0.0, 0.0)
+        self._gyro_angle = 0.0          # [rad] integrated since the last encoder reading
+        self._gyro_variance = 0.0       # [rad²] of that integral
+        self._last_gyro_t: float | None = None
+        self._rejected_logged = 0
         self._pub = self.create_publisher(Odometry, 'odom', STREAM_PUB_QOS)
         self.create_subscription(WheelEncoders, 'wheel_encoders', self._on_ticks, STREAM_SUB_QOS)
+        if self._heading_source == 'gyro':
+            self.create_subscription(Imu, 'imu/data', self._on_gyro, STREAM_SUB_QOS)
+        if self._fuse_gps:
+            self.create_subscription(NavSatFix, 'gps/fix', self._on_fix, STREAM_SUB_QOS)
+        if self._fuse_compass:
+            self.create_subscription(Imu, 'compass/heading', self._on_heading, STREAM_SUB_QOS)
+        fused = [name for name, on in (('GPS', self._fuse_gps),
+                                       ('compass', self._fuse_compass)) if on]
+        self.get_logger().info(f'heading from {self._heading_source}, {self._method} update; '
+                               f'fusing {", ".join(fused) or "nothing (dead reckoning)"}')
+
+    # -- inputs ------------------------------------------------------------------------------
+    def _on_gyro(self, msg: Imu) -> None:
+        t = stamp_to_seconds(msg.header.stamp)
+        rate = msg.angular_velocity.z
+        variance = msg.angular_velocity_covariance[8]
+        if not (math.isfinite(rate) and math.isfinite(variance)):
+            self.get_logger().warn('non-finite gyro reading; ignored', throttle_duration_sec=5.0)
+            return
+        if self._last_gyro_t is not None and t > self._last_gyro_t:
+            dt = t - self._last_gyro_t
+            self._gyro_angle += rate * dt              # the rate held over the sample
+            self._gyro_variance += max(variance, 0.0) * dt * dt
+        self._last_gyro_t = t
 
     def _on_ticks(self, msg: WheelEncoders) -> None:
         if msg.ticks_per_revolution < 1:
             self.get_logger().warn('wheel_encoders with ticks_per_revolution 0; ignored',
                                    throttle_duration_sec=5.0)
             return
-        if self._odometry is None or self._ticks_per_rev != msg.ticks_per_revolution:
-            self._ticks_per_rev = msg.ticks_per_revolution
-            self._odometry = DiffDriveOdometry(self._robot, self._ticks_per_rev, self._method)
-            self._odometry.reset(self._initial_pose)
         t = stamp_to_seconds(msg.header.stamp)
-        try:
-            pose = self._odometry.update(msg.left_ticks, msg.right_ticks, t)
-        except ValueError as err:
-            self.get_logger().warn(f'reading refused: {err}', throttle_duration_sec=5.0)
+        if self._last_ticks is None:
+            self._last_ticks = (msg.left_ticks, msg.right_ticks, t)
+            self._gyro_angle, self._gyro_variance = 0.0, 0.0
+            self._publish(t)
             return
-        out = odometry_message(t, self._odom_frame, self._base_frame, pose,
-                               self._odometry.twist)
+        left0, right0, t0 = self._last_ticks
+        if t <= t0:   # its travel counts at the next reading
+            self.get_logger().warn(f'encoder time did not advance ({t0} -> {t} s); reading '
+                                   'deferred', throttle_duration_sec=5.0)
+            return
+        metres_per_tick = 2.0 * math.pi * self._radius / msg.ticks_per_revolution
+        left = metres_per_tick * (msg.left_ticks - left0)
+        right = metres_per_tick * (msg.right_ticks - right0)
+        self._last_ticks = (msg.left_ticks, msg.right_ticks, t)
+        heading_variance = None
+        if self._heading_source == 'gyro':
+            # Keep the distance of the wheels, take the turn from the gyro (§7.7.3).
+            centre, half_turn = 0.5 * (left + right), 0.5 * self._gyro_angle * self._track
+            left, right = centre - half_turn, centre + half_turn
+            heading_variance = self._gyro_variance
+            self._gyro_angle, self._gyro_variance = 0.0, 0.0
+        before = self._ekf.pose
+        after = odometry_increment(before, left, right, self._track, self._method)
+        distance, turn = increment_between_poses(before, after)
+        self._ekf.predict(distance, turn, heading_variance=heading_variance, dt=t - t0)
+        self._twist = (0.5 * (left + right) / (t - t0), (right - left) / self._track / (t - t0))
+        self._publish(t)
+
+    def _on_fix(self, msg: NavSatFix) -> None:
+        if msg.status.status == NavSatStatus.STATUS_NO_FIX:
+            return
+        covariance = np.reshape(msg.position_covariance, (3, 3))[:2, :2]
+        values = (msg.latitude, msg.longitude, msg.altitude)
+        if not (all(math.isfinite(v) for v in values) and np.isfinite(covariance).all()):
+            self.get_logger().warn('non-finite GPS fix; ignored', throttle_duration_sec=5.0)
+            return
+        if msg.position_covariance_type == NavSatFix.COVARIANCE_TYPE_UNKNOWN:
+            self.get_logger().warn('GPS fix without covariance; ignored',
+                                   throttle_duration_sec=5.0)
+            return
+        east, north, _ = self._origin.geodetic_to_enu(*values)
+        self._correct(lambda: self._ekf.update_position([east, north], covariance,
+                                                        white_variance=self._white_variance),
+                      'GPS fix')
+
+    def _on_heading(self, msg: Imu) -> None:
+        q = msg.orientation
+        yaw = math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
+        variance = msg.orientation_covariance[8]
+        if not (math.isfinite(yaw) and math.isfinite(variance) and variance > 0.0):
+            self.get_logger().warn('compass heading without a finite, positive variance; '
+                                   'ignored', throttle_duration_sec=5.0)
+            return
+        self._correct(lambda: self._ekf.update_heading(yaw, variance), 'compass heading')
+
+    def _correct(self, update, what: str) -> None:
+        try:
+            accepted = update()
+        except ValueError as err:
+            self.get_logger().warn(f'{what} refused: {err}', throttle_duration_sec=5.0)
+            return
+        if not accepted:
+            self.get_logger().warn(f'{what} rejected by the innovation gate '
+                                   f'({self._ekf.rejected_updates} rejections so far)',
+                                   throttle_duration_sec=5.0)
+
+    # -- output ------------------------------------------------------------------------------
+    def _publish(self, t: float) -> None:
+        out = odometry_message(t, self._odom_frame, self._base_frame, self._ekf.pose,
+                               self._twist)
+        p = self._ekf.covariance
+        covariance = np.zeros((6, 6))            # (x, y, z, roll, pitch, yaw)
+        index = [0, 1, 5]
+        covariance[np.ix_(index, index)] = p
+        out.pose.covariance = [float(v) for v in covariance.ravel()]
         self._pub.publish(out)
 
 
 def main(args=None) -> None:
     """Run the odometry node until Ctrl-C."""
-    run_node(OdometryNode, args)
+    run_node(OdometryNode, args, executor_factory=EventsExecutor)

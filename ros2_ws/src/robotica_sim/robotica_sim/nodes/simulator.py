@@ -1,100 +1,154 @@
 """
-Simulator node: a differential-drive robot integrated at a fixed step; it owns the time.
+Simulator node: any wheeled vehicle of the book integrated at a fixed step; it owns the time.
 
-Subscribes ``cmd_vel`` (geometry_msgs/Twist). Publishes ``/clock``, the ground truth
-``ground_truth/odom`` (nav_msgs/Odometry, pose in ``world_frame_id``, twist in ``base_frame_id``),
-the wheel angles on ``joint_states`` (for the encoder emulator) and ``~/status``
-(robotica_msgs/SimulatorStatus). Service ``~/start`` (std_srvs/Trigger) starts the run when
-``autostart`` is false. Pacing (``realtime`` or ``lockstep``) and the end of the run are those of
+The configuration is the parameter ``vehicle.type`` (one of
+:data:`robotica_kin.mobile.vehicles.VEHICLE_TYPES`). Twist-driven vehicles (differential,
+synchronous, skid steer, omnidirectional, mecanum) subscribe ``cmd_vel`` (geometry_msgs/Twist);
+steered ones (tricycle, bicycle, Ackermann) subscribe ``vehicle_command``
+(robotica_msgs/VehicleCommand: guide-point speed and steering angle). Publishes ``/clock``, the
+ground truth ``ground_truth/odom`` (nav_msgs/Odometry, pose in ``world_frame_id``, twist in
+``base_frame_id``), the odometry wheels' angles and rates and the steering angles on
+``joint_states`` (for the encoder emulator) and ``~/status`` (robotica_msgs/SimulatorStatus).
+Service ``~/start`` (std_srvs/Trigger) starts the run when ``autostart`` is false. Pacing
+(``realtime`` or ``lockstep``) and the end of the run are those of
 :class:`~robotica_sim.nodes.stepped_simulator.SteppedSimulatorNode`. A command older than
-``cmd_timeout`` brakes the robot.
+``cmd_timeout`` stops the vehicle, and the node logs it; a non-finite command is refused.
 """
+import math
+
 from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
-from robotica_kin.mobile.differential_drive import DifferentialDriveParams
+from rclpy.experimental import EventsExecutor
+from robotica_kin.mobile.vehicles import (STEERED_TYPES, vehicle_kinematics, VEHICLE_TYPES,
+                                          VehicleGeometry)
 from robotica_kin.nodes.convert import odometry_message, seconds_to_stamp
 from robotica_kin.nodes.entry_point import run_node
 from robotica_kin.nodes.parameters import declare
 from robotica_kin.nodes.qos import COMMAND_QOS, STREAM_PUB_QOS
-from robotica_sim.diff_drive_simulation import DiffDriveSimulation, SimulationParams
+from robotica_msgs.msg import VehicleCommand
 from robotica_sim.nodes.stepped_simulator import SteppedSimulatorNode
+from robotica_sim.vehicle_simulation import VehicleSimulation, VehicleSimulationParams
 from sensor_msgs.msg import JointState
+
+GEOMETRY_PARAMETERS = (
+    ('wheel_radius', 0.1, 'Wheel radius c [m], book (4.109)', 1e-3, 10.0),
+    ('track', 0.4, 'Track b between the left and right wheels of an axle [m], book (4.110)',
+     1e-3, 100.0),
+    ('wheelbase', 0.5, 'Wheelbase l, rear to front axle [m] (steered vehicles), book (4.117)',
+     1e-3, 100.0),
+    ('base_radius', 0.2, 'Centre-to-wheel distance [m] (omni_three)', 1e-3, 100.0),
+    ('half_length', 0.2, 'Centre-to-axle distance [m] (mecanum)', 1e-3, 100.0),
+    ('max_steering_angle', 1.2, 'Steering angle limit |alpha| [rad] (steered vehicles)',
+     1e-3, 1.57),
+    ('icr_scale', 1.0, 'Skid steer: effective track / track (>= 1; 1 = no lateral skid)',
+     1.0, 10.0),
+)
 
 
 class SimulatorNode(SteppedSimulatorNode):
-    """Thin ROS shell around :class:`DiffDriveSimulation`; run it with :meth:`run`."""
+    """Thin ROS shell around :class:`VehicleSimulation`; run it with :meth:`run`."""
 
     def __init__(self) -> None:
         super().__init__('simulator', default_step_period=0.02, command_topic='cmd_vel')
-        robot = DifferentialDriveParams(
-            wheel_radius=declare(self, 'robot.wheel_radius', 0.1,
-                                 'Wheel radius c [m], book (4.109)', low=1e-3, high=10.0,
-                                 read_only=True),
-            wheel_separation=declare(self, 'robot.wheel_separation', 0.4,
-                                     'Track b between the drive wheels [m], book (4.110)',
-                                     low=1e-3, high=100.0, read_only=True))
+        vehicle_type = declare(self, 'vehicle.type', 'differential',
+                               f'Configuration: one of {VEHICLE_TYPES}', read_only=True)
+        if vehicle_type not in VEHICLE_TYPES:
+            raise ValueError(f'vehicle.type must be one of {VEHICLE_TYPES}, got '
+                             f'{vehicle_type!r}')
+        self._steered = vehicle_type in STEERED_TYPES
+        if self._steered:
+            self._command_topic = 'vehicle_command'
+        geometry = VehicleGeometry(**{
+            name: declare(self, f'vehicle.{name}', default, description, low=low, high=high,
+                          read_only=True)
+            for name, default, description, low, high in GEOMETRY_PARAMETERS})
         pose = [declare(self, 'initial_pose.' + k, 0.0, d, low=-1e6, high=1e6, read_only=True)
                 for k, d in (('x', 'Initial x [m], world frame'),
                              ('y', 'Initial y [m], world frame'),
                              ('theta', 'Initial heading [rad], REP-103 (from the x axis)'))]
-        params = SimulationParams(
+        params = VehicleSimulationParams(
             step_period=self.step_period,
             rk4_substeps=declare(self, 'rk4_substeps', 1, 'RK4 integration steps per step',
                                  low=1, high=1000, read_only=True),
             cmd_timeout=declare(self, 'cmd_timeout', 0.5,
-                                'A command older than this [s, simulated] brakes the robot',
-                                low=1e-3, high=60.0, read_only=True))
+                                'A command older than this [s, simulated] stops the vehicle',
+                                low=1e-3, high=60.0, read_only=True),
+            traction_time_constant=declare(
+                self, 'traction_time_constant', 0.0,
+                'First-order lag of the wheel/drive speeds [s]; 0: none', low=0.0, high=60.0,
+                read_only=True),
+            steering_time_constant=declare(
+                self, 'steering_time_constant', 0.0,
+                'First-order lag of the steering [s]; 0: none', low=0.0, high=60.0,
+                read_only=True),
+            longitudinal_slip=declare(
+                self, 'longitudinal_slip', 0.0,
+                'Wheel slip s: the ground moves (1 - s) of what the wheels roll', low=0.0,
+                high=0.9, read_only=True))
         self._world_frame = declare(self, 'world_frame_id', 'map',
                                     'Frame of the ground-truth pose', read_only=True)
         self._base_frame = declare(self, 'base_frame_id', 'base_link',
                                    'Frame of the robot body', read_only=True)
-        self._joint_names = [
-            declare(self, 'left_wheel_joint', 'left_wheel_joint', 'Left wheel joint name',
-                    read_only=True),
-            declare(self, 'right_wheel_joint', 'right_wheel_joint', 'Right wheel joint name',
-                    read_only=True)]
-        self._sim = DiffDriveSimulation(robot, params, pose)
+        self._wheel_joints = [
+            declare(self, 'left_wheel_joint', 'left_wheel_joint',
+                    'Left odometry wheel joint name (drive or rear axle)', read_only=True),
+            declare(self, 'right_wheel_joint', 'right_wheel_joint',
+                    'Right odometry wheel joint name (drive or rear axle)', read_only=True)]
+        self._sim = VehicleSimulation(vehicle_kinematics(vehicle_type, geometry), params, pose)
         self._truth_pub = self.create_publisher(Odometry, 'ground_truth/odom', STREAM_PUB_QOS)
         self._joints_pub = self.create_publisher(JointState, 'joint_states', STREAM_PUB_QOS)
-        self.create_subscription(Twist, 'cmd_vel', self._on_cmd_vel, COMMAND_QOS)
+        if self._steered:
+            self.create_subscription(VehicleCommand, 'vehicle_command', self._on_vehicle_command,
+                                     COMMAND_QOS)
+        else:
+            self.create_subscription(Twist, 'cmd_vel', self._on_cmd_vel, COMMAND_QOS)
         self._was_stale = False
-
-    @property
-    def publishers_to_flush(self) -> list:
-        """Return the clock, status, ground-truth and joint-state publishers."""
-        return super().publishers_to_flush + [self._truth_pub, self._joints_pub]
+        self.get_logger().info(f'vehicle {vehicle_type!r} ({geometry}), commands on '
+                               f'{self._command_topic}')
 
     # -- callbacks: store and convert only ------------------------------------------------
-    def _on_cmd_vel(self, msg: Twist) -> None:
+    def _take(self, command: tuple[float, float, float]) -> None:
         self.note_answer()
         try:
-            self._sim.set_command(msg.linear.x, msg.angular.z, self._sim.t)
+            self._sim.set_command(command, self._sim.t)
         except ValueError as err:
-            self._sim.set_command(0.0, 0.0, self._sim.t)
-            self.get_logger().warn(f'refused command ({err}); braking',
+            self.get_logger().warn(f'refused command ({err}); keeping the previous one, which '
+                                   'stops the vehicle when it goes stale',
                                    throttle_duration_sec=1.0)
+
+    def _on_cmd_vel(self, msg: Twist) -> None:
+        self._take((msg.linear.x, msg.linear.y, msg.angular.z))
+
+    def _on_vehicle_command(self, msg: VehicleCommand) -> None:
+        self._take((msg.speed, msg.steering_angle, 0.0))
 
     # -- the plant ------------------------------------------------------------------------
     def publish_plant(self, t: float) -> None:
-        """Publish the ground truth and the wheel angles at time ``t`` [s]."""
+        """Publish the ground truth and the wheel and steering angles at time ``t`` [s]."""
         stamp = seconds_to_stamp(t)
-        self._truth_pub.publish(odometry_message(t, self._world_frame, self._base_frame,
-                                                 self._sim.pose, self._sim.twist))
-        joints = JointState(name=self._joint_names,
+        joints = JointState(name=list(self._wheel_joints),
                             position=[float(a) for a in self._sim.wheel_angles],
-                            velocity=[float(w) for w in self._sim.wheel_speeds])
+                            velocity=[float(w) for w in self._sim.wheel_rates])
+        for name, angle in self._sim.joint_positions().items():
+            joints.name.append(name)
+            joints.position.append(angle)
+            joints.velocity.append(math.nan)   # not simulated: the steering rate is not known
         joints.header.stamp = stamp
         joints.header.frame_id = self._base_frame
         self._joints_pub.publish(joints)
+        self._truth_pub.publish(odometry_message(t, self._world_frame, self._base_frame,
+                                                 self._sim.pose, self._sim.twist))
 
     def step_plant(self) -> None:
-        """Advance the robot one step; brake (and log the change) when the command is stale."""
+        """Advance the vehicle one step; stop it (and log the change) when the command is stale."""
         stale = self._sim.command_is_stale()
         if stale:
             self.stale_steps += 1
         if stale != self._was_stale and self._sim.step_count > 0:
             if stale:
-                self.get_logger().warn(f'command stale at t = {self._sim.t:.3f} s: braking')
+                self.get_logger().warn(
+                    f'command stale (none newer than {self._sim.params.cmd_timeout} s) at '
+                    f't = {self._sim.t:.3f} s: stopping')
             else:
                 self.get_logger().info(f'commands resumed at t = {self._sim.t:.3f} s')
         self._was_stale = stale
@@ -103,4 +157,4 @@ class SimulatorNode(SteppedSimulatorNode):
 
 def main(args=None) -> None:
     """Run the simulator node until its end time or Ctrl-C."""
-    run_node(SimulatorNode, args, run=SimulatorNode.run)
+    run_node(SimulatorNode, args, run=SimulatorNode.run, executor_factory=EventsExecutor)

@@ -2,7 +2,7 @@
 Node tests of encoder_emulator: a real process on a private domain, talked to through DDS.
 
 Reference counts are computed by hand: an angle of pi rad on a 1024-count encoder is half a
-revolution, 512 counts; -pi/2 rad is -256 counts.
+revolution, 512 counts; -pi/2 rad is -256 counts (256 pulses per revolution, x4 decoding).
 """
 import math
 
@@ -17,7 +17,8 @@ QOS = QoSProfile(depth=10, reliability=ReliabilityPolicy.RELIABLE)
 
 def test_ticks_from_wheel_angles(start_node, ros_node, spin, publish):
     node, executor = ros_node
-    proc = start_node('robotica_sim', 'encoder_emulator', '-p', 'ticks_per_revolution:=1024')
+    proc = start_node('robotica_sim', 'encoder_emulator', '-p', 'pulses_per_revolution:=256',
+                      '-p', 'decoding:=4')
     received = []
     node.create_subscription(WheelEncoders, 'wheel_encoders', received.append, QOS)
     pub = node.create_publisher(JointState, 'joint_states', QOS)
@@ -54,7 +55,7 @@ def test_missing_joint_and_nan_are_skipped(start_node, ros_node, spin, publish, 
 
 
 def test_out_of_range_parameter_is_refused(start_node, read_output):
-    proc = start_node('robotica_sim', 'encoder_emulator', '-p', 'ticks_per_revolution:=0')
+    proc = start_node('robotica_sim', 'encoder_emulator', '-p', 'pulses_per_revolution:=0')
     assert proc.wait(timeout=30) == 2
     text = read_output(proc)
     assert 'invalid configuration' in text and 'Traceback' not in text

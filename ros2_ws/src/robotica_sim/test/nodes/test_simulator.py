@@ -10,6 +10,7 @@ from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
 import pytest
 from rclpy.qos import QoSProfile, ReliabilityPolicy
+from robotica_msgs.msg import VehicleCommand
 from rosgraph_msgs.msg import Clock
 
 pytestmark = pytest.mark.ros
@@ -64,3 +65,28 @@ def test_unknown_pacing_is_refused(start_node, read_output):
     proc = start_node('robotica_sim', 'simulator', '-p', 'pacing:=fast')
     assert proc.wait(timeout=30) == 2
     assert 'pacing must be one of' in read_output(proc)
+
+
+def test_tricycle_takes_vehicle_commands(start_node, ros_node, spin):
+    # (v, α) = (0.5 m/s, 0.3 rad) with l = 0.5 m: yaw rate v tan α / l (4.121), lockstep.
+    node, executor = ros_node
+    start_node('robotica_sim', 'simulator', '-p', 'vehicle.type:=tricycle',
+               '-p', 'vehicle.wheelbase:=0.5', '-p', 'pacing:=lockstep', '-p', 'end_time:=1.0')
+    truth = []
+    node.create_subscription(Odometry, 'ground_truth/odom', truth.append, QOS)
+    cmd = node.create_publisher(VehicleCommand, 'vehicle_command', CMD_QOS)
+
+    def answer(msg):
+        cmd.publish(VehicleCommand(speed=0.5, steering_angle=0.3))
+
+    node.create_subscription(Odometry, 'ground_truth/odom', answer, QOS)
+    assert spin(executor, lambda: truth and truth[-1].header.stamp.sec >= 1, timeout=30)
+    last = truth[-1]
+    assert last.twist.twist.angular.z == pytest.approx(0.5 * math.tan(0.3) / 0.5, rel=1e-9)
+    assert last.pose.pose.position.y > 0.05          # turned left
+
+
+def test_unknown_vehicle_type_is_refused(start_node, read_output):
+    proc = start_node('robotica_sim', 'simulator', '-p', 'vehicle.type:=hovercraft')
+    assert proc.wait(timeout=30) == 2
+    assert 'vehicle.type must be one of' in read_output(proc)

@@ -1,0 +1,103 @@
+"""
+Compass emulator node: ground-truth yaw -> magnetometer field and compass heading.
+
+Each ``ground_truth/odom`` message gives the true yaw (REP-103, ENU, from east); the reading is
+:class:`robotica_sim.compass_model.CompassModel` (book §7.7: declination, hard- and soft-iron
+deviation, tilt error, white noise, reproducible from ``seed``). Published, with the truth's
+stamp:
+
+* ``compass/magnetic_field`` (sensor_msgs/MagneticField): the field in the sensor frame [T] and
+  the white noise's covariance;
+* ``compass/heading`` (sensor_msgs/Imu, orientation only, as REP-145 asks of an orientation
+  sensor): the heading the compass computes, as a yaw quaternion, with the heading variance of
+  the noise; the angular-velocity and acceleration covariances are marked "not provided" (-1).
+
+The deviation of hard and soft iron is a bias, not noise: it is not in the covariance (it is
+what a calibration would remove), so a filter that trusts the covariance sees it as an error.
+"""
+import math
+
+from nav_msgs.msg import Odometry
+from rclpy.experimental import EventsExecutor
+from rclpy.node import Node
+from robotica_kin.nodes.convert import yaw_to_quaternion
+from robotica_kin.nodes.entry_point import run_node
+from robotica_kin.nodes.parameters import declare
+from robotica_kin.nodes.qos import STREAM_PUB_QOS, STREAM_SUB_QOS
+from robotica_sim.compass_model import CompassModel, CompassParams, heading_noise_stddev
+from sensor_msgs.msg import Imu, MagneticField
+
+_DEG = math.pi / 180.0
+
+
+class CompassEmulatorNode(Node):
+    """Publish the magnetometer reading and compass heading of the true yaw."""
+
+    def __init__(self) -> None:
+        super().__init__('compass_emulator')
+        defaults = CompassParams()
+        hard_iron = declare(self, 'hard_iron', [0.0, 0.0, 0.0],
+                            'Hard-iron offset (3 values) [T] in the sensor frame',
+                            read_only=True)
+        soft_iron = declare(self, 'soft_iron', [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0],
+                            'Soft-iron matrix, 9 values row by row [-]', read_only=True)
+        if len(soft_iron) != 9:
+            raise ValueError(f'soft_iron must have 9 values (3x3 row by row), got '
+                             f'{len(soft_iron)}')
+        params = CompassParams(
+            declination=declare(self, 'declination', defaults.declination,
+                                'Magnetic declination [rad], > 0 east', low=-math.pi,
+                                high=math.pi, read_only=True),
+            inclination=declare(self, 'inclination', defaults.inclination,
+                                'Magnetic inclination (dip) [rad], > 0 downwards',
+                                low=-math.pi / 2, high=math.pi / 2, read_only=True),
+            field_strength=declare(self, 'field_strength', defaults.field_strength,
+                                   'Earth field total intensity [T]', low=1e-7, high=1e-3,
+                                   read_only=True),
+            hard_iron=tuple(hard_iron),
+            soft_iron=tuple(tuple(soft_iron[3 * i:3 * i + 3]) for i in range(3)),
+            tilt_error=declare(self, 'tilt_error', 0.0, 'Tilt of the sensor [rad]',
+                               low=-0.5, high=0.5, read_only=True),
+            noise_stddev=declare(self, 'noise_stddev', 2e-7, 'White noise per axis [T]',
+                                 low=0.0, high=1e-4, read_only=True))
+        seed = declare(self, 'seed', 0, 'Seed of the noise draws', low=0, high=2**31 - 1,
+                       read_only=True)
+        self._model = CompassModel(params, seed)
+        self._field_variance = params.noise_stddev ** 2
+        self._heading_variance = heading_noise_stddev(params) ** 2
+        self._frame = declare(self, 'frame_id', 'base_link', 'frame_id of the readings',
+                              read_only=True)
+        self._field_pub = self.create_publisher(MagneticField, 'compass/magnetic_field',
+                                                STREAM_PUB_QOS)
+        self._heading_pub = self.create_publisher(Imu, 'compass/heading', STREAM_PUB_QOS)
+        self.create_subscription(Odometry, 'ground_truth/odom', self._on_truth, STREAM_SUB_QOS)
+        self.get_logger().info(f'heading noise {math.sqrt(self._heading_variance) / _DEG:.3g} '
+                               'deg (1 sigma)')
+
+    def _on_truth(self, msg: Odometry) -> None:
+        q = msg.pose.pose.orientation
+        yaw = math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
+        if not math.isfinite(yaw):
+            self.get_logger().warn('non-finite ground truth; no reading',
+                                   throttle_duration_sec=5.0)
+            return
+        field, heading = self._model.measure(yaw)
+        out = MagneticField()
+        out.header.stamp = msg.header.stamp
+        out.header.frame_id = self._frame
+        out.magnetic_field.x, out.magnetic_field.y, out.magnetic_field.z = (float(v)
+                                                                            for v in field)
+        out.magnetic_field_covariance = [self._field_variance if i % 4 == 0 else 0.0
+                                         for i in range(9)]
+        self._field_pub.publish(out)
+        imu = Imu(orientation=yaw_to_quaternion(heading))
+        imu.header = out.header
+        imu.orientation_covariance = [0.0] * 8 + [self._heading_variance]
+        imu.angular_velocity_covariance[0] = -1.0
+        imu.linear_acceleration_covariance[0] = -1.0
+        self._heading_pub.publish(imu)
+
+
+def main(args=None) -> None:
+    """Run the compass emulator until Ctrl-C."""
+    run_node(CompassEmulatorNode, args, executor_factory=EventsExecutor)

@@ -1,0 +1,91 @@
+"""
+GPS emulator node: ground truth -> ``gps/fix`` (sensor_msgs/NavSatFix) with an honest covariance.
+
+Each ``ground_truth/odom`` message gives the true position in the world frame, taken as the
+local ENU frame of the geodetic origin ``origin.*`` (REP-103/105: x east, y north). The error
+model is :class:`robotica_sim.gps_model.GpsModel` with the receiver ``preset`` (``sa_standalone``
+~100 m 2DRMS as in the book's SA era, ``standalone`` a few metres, ``dgps`` ~1 m, ``rtk`` ~2 cm):
+time-correlated (Gauss–Markov) plus white error, fixes at the update rate, latency and dropouts,
+reproducible from ``seed``. A fix is published when its latency has elapsed in simulated time,
+stamped with the time of the position it reports; latitude and longitude come from
+:class:`robotica_kin.geodetic.GeodeticOrigin` (WGS-84). The covariance is the model's total
+error covariance in ENU (``COVARIANCE_TYPE_KNOWN``); the status is the preset's solution type.
+"""
+from collections import deque
+import math
+
+from nav_msgs.msg import Odometry
+import numpy as np
+from rclpy.experimental import EventsExecutor
+from rclpy.node import Node
+from robotica_kin.geodetic import GeodeticOrigin
+from robotica_kin.nodes.convert import seconds_to_stamp, stamp_to_seconds
+from robotica_kin.nodes.entry_point import run_node
+from robotica_kin.nodes.parameters import declare
+from robotica_kin.nodes.qos import STREAM_PUB_QOS, STREAM_SUB_QOS
+from robotica_sim.gps_model import gps_preset, GPS_PRESETS, GpsFix, GpsModel
+from sensor_msgs.msg import NavSatFix, NavSatStatus
+
+
+class GpsEmulatorNode(Node):
+    """Publish GPS fixes of the ground-truth position."""
+
+    def __init__(self) -> None:
+        super().__init__('gps_emulator')
+        preset = declare(self, 'preset', 'dgps',
+                         f'Receiver: one of {tuple(GPS_PRESETS)} (book §7.7.5)', read_only=True)
+        self._params = gps_preset(preset)
+        seed = declare(self, 'seed', 0, 'Seed of the error draws', low=0, high=2**31 - 1,
+                       read_only=True)
+        self._model = GpsModel(self._params, seed)
+        self._origin = GeodeticOrigin(
+            declare(self, 'origin.latitude', 37.41, 'Latitude of the world origin [deg] '
+                    '(default: Seville)', low=-90.0, high=90.0, read_only=True),
+            declare(self, 'origin.longitude', -6.0, 'Longitude of the world origin [deg]',
+                    low=-180.0, high=180.0, read_only=True),
+            declare(self, 'origin.altitude', 10.0, 'Height of the origin above the WGS-84 '
+                    'ellipsoid [m]', low=-1e4, high=1e5, read_only=True))
+        self._antenna_height = declare(self, 'antenna_height', 0.0,
+                                       'Antenna height above the ground plane [m]', low=0.0,
+                                       high=100.0, read_only=True)
+        self._frame = declare(self, 'frame_id', 'gps_link', 'frame_id of the fixes',
+                              read_only=True)
+        self._pending: deque[GpsFix] = deque()
+        self._pub = self.create_publisher(NavSatFix, 'gps/fix', STREAM_PUB_QOS)
+        self.create_subscription(Odometry, 'ground_truth/odom', self._on_truth, STREAM_SUB_QOS)
+        self.get_logger().info(
+            f'preset {preset!r}: sigma {self._params.horizontal_stddev:.3g} m per horizontal '
+            f'axis, {self._params.update_rate:g} Hz, latency {self._params.latency:g} s')
+
+    def _on_truth(self, msg: Odometry) -> None:
+        t = stamp_to_seconds(msg.header.stamp)
+        position = msg.pose.pose.position
+        enu = (position.x, position.y, position.z + self._antenna_height)
+        if not all(math.isfinite(v) for v in enu):
+            self.get_logger().warn('non-finite ground truth; no fix', throttle_duration_sec=5.0)
+            return
+        try:
+            fix = self._model.measure(t, enu)
+        except ValueError as err:
+            self.get_logger().warn(f'ground truth refused ({err})', throttle_duration_sec=5.0)
+            return
+        if fix is not None:
+            self._pending.append(fix)
+        while self._pending and self._pending[0].available_at <= t + 1e-9:
+            self._publish(self._pending.popleft())
+
+    def _publish(self, fix: GpsFix) -> None:
+        lat, lon, alt = self._origin.enu_to_geodetic(*fix.enu)
+        out = NavSatFix(latitude=float(lat), longitude=float(lon), altitude=float(alt),
+                        position_covariance=[float(v) for v in np.ravel(fix.covariance)],
+                        position_covariance_type=NavSatFix.COVARIANCE_TYPE_KNOWN)
+        out.status.status = fix.navsat_status
+        out.status.service = NavSatStatus.SERVICE_GPS
+        out.header.stamp = seconds_to_stamp(fix.stamp)
+        out.header.frame_id = self._frame
+        self._pub.publish(out)
+
+
+def main(args=None) -> None:
+    """Run the GPS emulator until Ctrl-C."""
+    run_node(GpsEmulatorNode, args, executor_factory=EventsExecutor)

@@ -1,0 +1,77 @@
+"""
+Gyroscope emulator node: ground-truth yaw rate -> ``imu/data`` (sensor_msgs/Imu, rates only).
+
+Each ``ground_truth/odom`` message gives the true body rates (a planar vehicle: yaw rate only,
+roll and pitch rates zero); each axis is a :class:`robotica_sim.gyro_model.GyroModel` of the
+grade ``preset`` (book §7.7.3; white noise, Gauss–Markov bias instability, rate random walk,
+turn-on bias, scale factor, saturation, quantisation), reproducible from ``seed``. The sample
+period is the time between two truth messages (the first message only starts the clock). The
+message carries the angular velocity in ``frame_id`` and, as its covariance, the white-noise
+variance per sample (the honest figure of one reading; the slowly wandering bias is not white
+and is left to the estimator); orientation and linear acceleration are marked "not provided"
+(covariance element 0 = -1, as sensor_msgs/Imu defines).
+"""
+from nav_msgs.msg import Odometry
+import numpy as np
+from rclpy.experimental import EventsExecutor
+from rclpy.node import Node
+from robotica_kin.nodes.convert import stamp_to_seconds
+from robotica_kin.nodes.entry_point import run_node
+from robotica_kin.nodes.parameters import declare
+from robotica_kin.nodes.qos import STREAM_PUB_QOS, STREAM_SUB_QOS
+from robotica_sim.gyro_model import GYRO_PRESETS, GyroModel
+from sensor_msgs.msg import Imu
+
+
+class GyroEmulatorNode(Node):
+    """Publish the three gyro axes' readings of the true body rates."""
+
+    def __init__(self) -> None:
+        super().__init__('gyro_emulator')
+        preset = declare(self, 'preset', 'mems_consumer',
+                         f'Gyro grade: one of {tuple(GYRO_PRESETS)}', read_only=True)
+        if preset not in GYRO_PRESETS:
+            raise ValueError(f'preset must be one of {tuple(GYRO_PRESETS)}, got {preset!r}')
+        seed = declare(self, 'seed', 0, 'Seed of the noise and bias draws', low=0,
+                       high=2**31 - 1, read_only=True)
+        self._axes = [GyroModel(GYRO_PRESETS[preset], np.random.default_rng(s))
+                      for s in np.random.SeedSequence(seed).spawn(3)]
+        self._frame = declare(self, 'frame_id', 'base_link', 'frame_id of the readings',
+                              read_only=True)
+        self._last_t: float | None = None
+        self._pub = self.create_publisher(Imu, 'imu/data', STREAM_PUB_QOS)
+        self.create_subscription(Odometry, 'ground_truth/odom', self._on_truth, STREAM_SUB_QOS)
+        self.get_logger().info(f'gyro preset {preset!r}')
+
+    def _on_truth(self, msg: Odometry) -> None:
+        t = stamp_to_seconds(msg.header.stamp)
+        rates = msg.twist.twist.angular
+        true_rates = (rates.x, rates.y, rates.z)
+        if not np.isfinite(true_rates).all():
+            self.get_logger().warn('non-finite ground truth; no reading',
+                                   throttle_duration_sec=5.0)
+            return
+        if self._last_t is None or t <= self._last_t:
+            if self._last_t is not None:
+                self.get_logger().warn(f'time did not advance ({self._last_t} -> {t} s); '
+                                       'reading skipped', throttle_duration_sec=5.0)
+            self._last_t = t if self._last_t is None else self._last_t
+            return
+        dt = t - self._last_t
+        self._last_t = t
+        measured = [axis.measure(rate, dt) for axis, rate in zip(self._axes, true_rates)]
+        out = Imu()
+        out.header.stamp = msg.header.stamp
+        out.header.frame_id = self._frame
+        out.angular_velocity.x, out.angular_velocity.y, out.angular_velocity.z = measured
+        covariance = [0.0] * 9
+        covariance[0], covariance[4], covariance[8] = (axis.variance(dt) for axis in self._axes)
+        out.angular_velocity_covariance = covariance
+        out.orientation_covariance[0] = -1.0
+        out.linear_acceleration_covariance[0] = -1.0
+        self._pub.publish(out)
+
+
+def main(args=None) -> None:
+    """Run the gyro emulator until Ctrl-C."""
+    run_node(GyroEmulatorNode, args, executor_factory=EventsExecutor)

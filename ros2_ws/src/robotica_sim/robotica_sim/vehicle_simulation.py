@@ -1,0 +1,189 @@
+"""
+Kinematic simulation of any wheeled vehicle at a fixed step (the vehicle simulator's core).
+
+The vehicle is one of :data:`robotica_kin.mobile.vehicles.VEHICLE_TYPES`. Its state is the pose
+(x, y, θ) of the guide point in the world frame (REP-103, θ from the x axis), its actuators
+(wheel speeds, drive speed, steering angle) and the angles of its two odometry wheels. Per step,
+with the command held (zero-order hold), classic RK4 integrates
+
+* the pose: x' = vx cos θ − vy sin θ, y' = vx sin θ + vy cos θ, θ' = ω, with (vx, vy, ω) the
+  direct model of the actuators (book §4.7.4) scaled by ``1 − longitudinal_slip`` (the ground
+  moves less than the wheels roll: slip is what dead reckoning cannot see, §4.7.5);
+* the actuators: a first-order lag towards the inverse model's targets,
+  a' = (a* − a) / τ, with τ the traction or the steering time constant (0: instantaneous);
+* the odometry wheels' angles: their rolling rates (unslipped).
+
+A command older than ``cmd_timeout`` sets the targets to a stop (zero speeds; a steered vehicle
+keeps its steering angle): the stale-command safety of ros2_controllers' ``cmd_vel_timeout``.
+"""
+
+from dataclasses import dataclass
+import math
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+from robotica_kin.integrators import rk4_step
+from robotica_kin.mobile.vehicles import as_command, VehicleKinematics
+
+__all__ = ['VehicleSimulation', 'VehicleSimulationParams']
+
+
+@dataclass(frozen=True)
+class VehicleSimulationParams:
+    """Fixed-step integration and actuator settings (SI units)."""
+
+    step_period: float = 0.02             # [s] simulated time per step (publishing period)
+    rk4_substeps: int = 1                 # RK4 steps per simulation step
+    cmd_timeout: float = 0.5              # [s] a command older than this (simulated) stops
+    traction_time_constant: float = 0.0   # [s] first-order lag of speeds; 0: none
+    steering_time_constant: float = 0.0   # [s] first-order lag of steering; 0: none
+    longitudinal_slip: float = 0.0        # [-] in [0, 1): ground speed / rolling speed = 1 - s
+
+    def __post_init__(self) -> None:
+        if not (math.isfinite(self.step_period) and self.step_period > 0.0):
+            raise ValueError(f'step_period must be > 0 s, got {self.step_period!r}')
+        if self.rk4_substeps < 1:
+            raise ValueError(f'rk4_substeps must be >= 1, got {self.rk4_substeps!r}')
+        if not (math.isfinite(self.cmd_timeout) and self.cmd_timeout > 0.0):
+            raise ValueError(f'cmd_timeout must be > 0 s, got {self.cmd_timeout!r}')
+        for name in ('traction_time_constant', 'steering_time_constant'):
+            value = getattr(self, name)
+            if not (math.isfinite(value) and value >= 0.0):
+                raise ValueError(f'{name} must be finite and >= 0 s, got {value!r}')
+        if not (0.0 <= self.longitudinal_slip < 1.0):
+            raise ValueError('longitudinal_slip must be in [0, 1), got '
+                             f'{self.longitudinal_slip!r}')
+
+
+class VehicleSimulation:
+    """
+    State and stepping of one simulated vehicle.
+
+    Time starts at 0 and advances by ``step_period`` per :meth:`step`.
+
+    A differential-drive robot (Ejemplo 4.9 (a): c = 0.25 m, b = 1 m, both wheels at 1 rad/s,
+    that is v = 0.25 m/s) drives for 2 s along its heading:
+
+    >>> from robotica_kin.mobile.vehicles import vehicle_kinematics, VehicleGeometry
+    >>> kin = vehicle_kinematics('differential', VehicleGeometry(wheel_radius=0.25, track=1.0))
+    >>> sim = VehicleSimulation(kin, VehicleSimulationParams(step_period=0.1, cmd_timeout=5.0))
+    >>> sim.set_command([0.25, 0.0, 0.0], t=0.0)
+    >>> for _ in range(20):
+    ...     sim.step()
+    >>> [round(float(v), 9) for v in sim.pose], [round(float(a), 9) for a in sim.wheel_angles]
+    ([0.5, 0.0, 0.0], [2.0, 2.0])
+    """
+
+    def __init__(self, kinematics: VehicleKinematics, params: VehicleSimulationParams,
+                 initial_pose: ArrayLike = (0.0, 0.0, 0.0)) -> None:
+        pose = np.asarray(initial_pose, dtype=np.float64)
+        if pose.shape != (3,) or not np.isfinite(pose).all():
+            raise ValueError(f'initial_pose must be 3 finite numbers (x, y, theta), got '
+                             f'{initial_pose!r}')
+        self.kinematics = kinematics
+        self.params = params
+        m = len(kinematics.actuator_names)
+        self._m = m
+        self._lags = np.array([params.steering_time_constant if steering
+                               else params.traction_time_constant
+                               for steering in kinematics.steering_actuators])
+        self._state = np.concatenate([pose, np.zeros(m), [0.0, 0.0]])
+        self._step = 0
+        self._command = np.zeros(3)
+        self._command_time = -math.inf
+        self._targets = np.zeros(m)
+
+    # -- read-outs ------------------------------------------------------------------------
+    @property
+    def t(self) -> float:
+        """Return the simulated time [s] of the current state."""
+        return round(self._step * self.params.step_period, 12)
+
+    @property
+    def step_count(self) -> int:
+        """Return the number of steps taken since the start."""
+        return self._step
+
+    @property
+    def pose(self) -> NDArray[np.float64]:
+        """Return the pose [m, m, rad]: x, y and θ in (−π, π], world frame."""
+        x, y, theta = self._state[:3]
+        return np.array([x, y, math.atan2(math.sin(theta), math.cos(theta))])
+
+    @property
+    def actuators(self) -> NDArray[np.float64]:
+        """Return the actuator values (see ``kinematics.actuator_names``)."""
+        return self._state[3:3 + self._m].copy()
+
+    @property
+    def twist(self) -> tuple[float, float, float]:
+        """Return the ground twist in ``base_link``: vx [m/s], vy [m/s], ω [rad/s]."""
+        scale = 1.0 - self.params.longitudinal_slip
+        vx, vy, omega = self.kinematics.body_twist(self._state[3:3 + self._m])
+        return scale * vx, scale * vy, scale * omega
+
+    @property
+    def wheel_angles(self) -> NDArray[np.float64]:
+        """Return the cumulative angles (left, right) [rad] of the odometry wheels."""
+        return self._state[3 + self._m:].copy()
+
+    @property
+    def wheel_rates(self) -> tuple[float, float]:
+        """Return the rolling rates (left, right) [rad/s] of the odometry wheels."""
+        return self.kinematics.wheel_rates(self._state[3:3 + self._m])
+
+    def joint_positions(self) -> dict[str, float]:
+        """Return the steering joints' angles [rad] (empty for unsteered vehicles)."""
+        return self.kinematics.joint_positions(self._state[3:3 + self._m])
+
+    # -- commands ---------------------------------------------------------------------------
+    def set_command(self, command: ArrayLike, t: float) -> None:
+        """
+        Take ``command`` received at simulated time ``t`` [s].
+
+        ``command`` is (vx [m/s], vy [m/s], ω [rad/s]) for a twist-driven vehicle and
+        (v [m/s], α [rad], 0) for a steered one. Raises ValueError for a non-finite command or
+        time; the previous command then stays (and goes stale on its own).
+        """
+        array = as_command(command)
+        if not math.isfinite(t):
+            raise ValueError(f'command time must be finite, got {t!r}')
+        self._targets = self.kinematics.actuator_targets(array)
+        self._command = array
+        self._command_time = float(t)
+
+    def command_is_stale(self) -> bool:
+        """Tell whether the newest command is older than ``cmd_timeout`` at the current time."""
+        return self.t - self._command_time > self.params.cmd_timeout + 1e-12
+
+    def _stop_targets(self) -> NDArray[np.float64]:
+        stop = np.zeros(self._m)
+        steering = np.array(self.kinematics.steering_actuators)
+        if self.kinematics.steered:   # keep the wheels where they are steered
+            stop[steering] = self._state[3:3 + self._m][steering]
+        return stop
+
+    # -- stepping -----------------------------------------------------------------------------
+    def _deriv(self, t: float, state: NDArray[np.float64], targets: NDArray[np.float64]
+               ) -> NDArray[np.float64]:
+        actuators = state[3:3 + self._m]
+        scale = 1.0 - self.params.longitudinal_slip
+        vx, vy, omega = self.kinematics.body_twist(actuators)
+        c, s = math.cos(state[2]), math.sin(state[2])
+        lagged = self._lags > 0.0
+        rates = np.zeros(self._m)
+        rates[lagged] = (targets[lagged] - actuators[lagged]) / self._lags[lagged]
+        return np.concatenate([[scale * (vx * c - vy * s), scale * (vx * s + vy * c),
+                                scale * omega], rates, self.kinematics.wheel_rates(actuators)])
+
+    def step(self) -> None:
+        """Advance one step with the current command (a stop when it is stale)."""
+        targets = self._stop_targets() if self.command_is_stale() else self._targets
+        instant = self._lags == 0.0
+        self._state[3:3 + self._m][instant] = targets[instant]
+        h = self.params.step_period / self.params.rk4_substeps
+        t = self.t
+        for _ in range(self.params.rk4_substeps):
+            self._state = rk4_step(self._deriv, t, self._state, h, targets)
+            t += h
+        self._step += 1

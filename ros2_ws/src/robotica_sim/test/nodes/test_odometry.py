@@ -1,0 +1,100 @@
+"""
+Node tests of odometry: dead reckoning from ticks, the turn from a gyro, a GPS correction.
+
+Expected values are worked out here: a wheel of c = 0.1 m on a 1000-count encoder moves
+2π c / 1000 = 0.6283 mm per count; the odometry's distance variance grows by k_distance per metre
+travelled; a Kalman update of a position with variance P by a fix with variance R moves it by
+P / (P + R) of the innovation.
+"""
+import math
+
+from nav_msgs.msg import Odometry
+import pytest
+from rclpy.qos import QoSProfile, ReliabilityPolicy
+from robotica_msgs.msg import WheelEncoders
+from sensor_msgs.msg import Imu, NavSatFix
+
+pytestmark = pytest.mark.ros
+QOS = QoSProfile(depth=100, reliability=ReliabilityPolicy.RELIABLE)
+METRES_PER_TICK = 2.0 * math.pi * 0.1 / 1000
+
+
+def ticks(t, left, right):
+    msg = WheelEncoders(left_ticks=left, right_ticks=right, ticks_per_revolution=1000)
+    msg.header.stamp.sec, msg.header.stamp.nanosec = int(t), round((t - int(t)) * 1e9)
+    return msg
+
+
+def ready(node, executor, spin, *publishers):
+    assert spin(executor, lambda: all(p.get_subscription_count() > 0 for p in publishers)
+                and node.count_publishers('odom') > 0)
+    spin(executor, lambda: False, timeout=1.0)
+
+
+def test_straight_line_dead_reckoning_and_its_covariance(start_node, ros_node, spin):
+    node, executor = ros_node
+    start_node('robotica_sim', 'odometry', '-p', 'odometry_noise.k_distance:=0.002')
+    odom = []
+    node.create_subscription(Odometry, 'odom', odom.append, QOS)
+    pub = node.create_publisher(WheelEncoders, 'wheel_encoders', QOS)
+    ready(node, executor, spin, pub)
+    for k in range(11):
+        pub.publish(ticks(0.1 * k, 100 * k, 100 * k))
+        spin(executor, lambda: False, timeout=0.02)
+    assert spin(executor, lambda: len(odom) >= 11)
+    last = odom[-1]
+    distance = 1000 * METRES_PER_TICK
+    assert last.pose.pose.position.x == pytest.approx(distance, abs=1e-9)
+    assert last.pose.pose.position.y == pytest.approx(0.0, abs=1e-9)
+    assert last.pose.covariance[0] == pytest.approx(0.002 * distance, rel=1e-6)
+    assert last.twist.twist.linear.x == pytest.approx(100 * METRES_PER_TICK / 0.1, rel=1e-6)
+
+
+def test_heading_from_the_gyro(start_node, ros_node, spin):
+    node, executor = ros_node
+    start_node('robotica_sim', 'odometry', '-p', 'heading_source:=gyro')
+    odom = []
+    node.create_subscription(Odometry, 'odom', odom.append, QOS)
+    enc = node.create_publisher(WheelEncoders, 'wheel_encoders', QOS)
+    imu = node.create_publisher(Imu, 'imu/data', QOS)
+    ready(node, executor, spin, enc, imu)
+    for k in range(11):
+        gyro = Imu()
+        gyro.header.stamp = ticks(0.1 * k, 0, 0).header.stamp
+        gyro.angular_velocity.z = 0.5
+        imu.publish(gyro)
+        spin(executor, lambda: False, timeout=0.05)
+        enc.publish(ticks(0.1 * k, 0, 0))        # spinning in place: the wheels do not roll
+        spin(executor, lambda: False, timeout=0.05)
+    assert spin(executor, lambda: len(odom) >= 11)
+    q = odom[-1].pose.pose.orientation
+    assert 2.0 * math.atan2(q.z, q.w) == pytest.approx(0.5 * 1.0, abs=1e-9)
+
+
+def test_gps_fix_pulls_the_estimate(start_node, ros_node, spin):
+    node, executor = ros_node
+    start_node('robotica_sim', 'odometry', '-p', 'fuse_gps:=true',
+               '-p', 'initial_stddev.position:=1.0', '-p', 'origin.latitude:=0.0',
+               '-p', 'origin.longitude:=0.0', '-p', 'origin.altitude:=0.0')
+    odom = []
+    node.create_subscription(Odometry, 'odom', odom.append, QOS)
+    enc = node.create_publisher(WheelEncoders, 'wheel_encoders', QOS)
+    gps = node.create_publisher(NavSatFix, 'gps/fix', QOS)
+    ready(node, executor, spin, enc, gps)
+    # 2 m east of the origin on the equator: 2 / a rad of longitude (a = 6378137 m).
+    fix = NavSatFix(latitude=0.0, longitude=math.degrees(2.0 / 6378137.0), altitude=0.0,
+                    position_covariance=[1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0],
+                    position_covariance_type=NavSatFix.COVARIANCE_TYPE_KNOWN)
+    gps.publish(fix)
+    spin(executor, lambda: False, timeout=0.5)
+    enc.publish(ticks(0.0, 0, 0))
+    assert spin(executor, lambda: odom)
+    x = odom[-1].pose.pose.position.x
+    assert x == pytest.approx(1.0, abs=1e-6)                 # P / (P + R) = 1/2 of 2 m
+    assert odom[-1].pose.covariance[0] == pytest.approx(0.5, abs=1e-9)
+
+
+def test_bad_heading_source_is_refused(start_node, read_output):
+    proc = start_node('robotica_sim', 'odometry', '-p', 'heading_source:=stars')
+    assert proc.wait(timeout=30) == 2
+    assert 'heading_source must be one of' in read_output(proc)
