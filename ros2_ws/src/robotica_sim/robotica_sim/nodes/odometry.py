@@ -19,9 +19,9 @@ is) makes a filter that takes each fix as independent overconfident; ``gps_bias.
 estimates it as two more, Gauss–Markov, states (``gps_bias.correlation_time``). Without fusion
 it is pure dead reckoning with a growing covariance. Measurements are applied when they
 arrive: a fix's latency (0.1 s for DGPS) and a gyro sample that arrives after the encoder
-reading of the same step (its turn then counts at the next reading) are not compensated. Publishes ``odom`` (nav_msgs/Odometry: pose in
-``odom_frame_id``, twist in ``base_frame_id``, REP-105, pose covariance of x, y and yaw) at each
-encoder reading.
+reading of the same step (its turn then counts at the next reading) are not compensated.
+Publishes ``odom`` (nav_msgs/Odometry: pose in ``odom_frame_id``, twist in ``base_frame_id``,
+REP-105, pose covariance of x, y and yaw) at each encoder reading.
 """
 import math
 
