@@ -4,8 +4,9 @@ Speed of the mobile-robot loop: the pure core in one process (the ROS loop is ``
 The core is what the nodes of ``figure_eight_differential`` compute, in one Python loop at
 50 Hz: :class:`~robotica_sim.vehicle_simulation.VehicleSimulation` (differential drive, RK4),
 two :class:`~robotica_sim.encoder_model.EncoderModel` counters, the gyro, compass and DGPS
-models, the EKF (:class:`~robotica_kin.mobile.ekf_localization.EkfLocalization`) fed by the
-encoder increments and corrected by every compass heading and GPS fix, and pure pursuit
+models, the EKF (:class:`~robotica_kin.mobile.ekf_localization.EkfLocalization`, with the GPS
+error as Gauss–Markov states, as the odometry node runs it) fed by the encoder increments and
+corrected by every compass heading and GPS fix, and pure pursuit
 (:class:`~robotica_ctrl.mobile.pure_pursuit.PurePursuit`) on the EKF's pose along a figure
 eight of 2 m radius at 0.5 m/s. Reported: simulated seconds per wall-clock second (RTF), the
 time per step, and the EKF's position error against the simulated truth (RMS over the run).
@@ -43,8 +44,11 @@ def mobile_core_benchmark(duration: float = 60.0, seed: int = 1) -> list[Measure
     compass_params = CompassParams(noise_stddev=2e-7)
     compass = CompassModel(compass_params, np.random.default_rng(seeds[3]))
     heading_variance = heading_noise_stddev(compass_params) ** 2
-    gps = GpsModel(gps_preset('dgps'), np.random.default_rng(seeds[4]))
-    ekf = EkfLocalization([0.0, 0.0, 0.0], np.zeros((3, 3)), OdometryNoise())
+    receiver = gps_preset('dgps')
+    gps = GpsModel(receiver, np.random.default_rng(seeds[4]))
+    ekf = EkfLocalization([0.0, 0.0, 0.0], np.zeros((3, 3)), OdometryNoise(),
+                          position_bias_stddev=float(receiver.correlated_stddev[0]),
+                          position_bias_correlation_time=receiver.correlation_time)
     tracker = PurePursuit(PolylinePath(figure_eight(2.0)),
                           PurePursuitParams(lookahead_distance=0.6))
     counts = encoders[0].params.ticks_per_revolution
@@ -61,13 +65,14 @@ def mobile_core_benchmark(duration: float = 60.0, seed: int = 1) -> list[Measure
         readings = [encoder.ticks(angle) for encoder, angle in zip(encoders, sim.wheel_angles)]
         left, right = (metres_per_tick * (new - old) for new, old in zip(readings, ticks))
         ticks = readings
-        ekf.predict(0.5 * (left + right), (right - left) / geometry.track)
+        ekf.predict(0.5 * (left + right), (right - left) / geometry.track, dt=STEP)
         gyro.measure(sim.twist[2], STEP)          # read, as the gyro node does (heading: encoders)
         _, heading = compass.measure(float(truth[2]))
         ekf.update_heading(heading, heading_variance)
         fix = gps.measure(t, (truth[0], truth[1], 0.0))
         if fix is not None:
-            ekf.update_position(fix.enu[:2], fix.covariance[:2, :2])
+            ekf.update_position(fix.enu[:2], fix.covariance[:2, :2],
+                                white_variance=receiver.white_stddev ** 2)
         errors.append(math.hypot(*(ekf.pose[:2] - truth[:2])))
     wall = time.perf_counter() - start
     rms = math.sqrt(sum(e * e for e in errors) / len(errors))
