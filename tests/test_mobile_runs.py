@@ -10,7 +10,8 @@ End-to-end: the mobile scenarios of the book run as separate processes, recorded
 * Ejemplo 4.8 (§4.7.4): the tricycle on the unit circle with l = 1.5 m steers at the book's
   α = 56.31° with the front wheel at v_t = v / cos α = 1.8028 m/s, and stays on the circle.
 * A figure eight with every sensor on: the EKF's error stays bounded (well under the DGPS
-  fix error) and the tracker completes the path.
+  fix error) and within its own 3σ, and the tracker follows the path; every other vehicle type
+  runs its figure eight for 15 s, tracked and estimated.
 """
 import json
 import math
@@ -25,11 +26,11 @@ pytestmark = [pytest.mark.slow, pytest.mark.ros]
 SCENARIOS = Path(__file__).resolve().parents[1] / 'ros2_ws/src/robotica_sim/scenarios'
 
 
-def run(tmp_path, name: str) -> tuple[dict, dict]:
+def run(tmp_path, name: str, *options: str) -> tuple[dict, dict]:
     """Run scenario ``name``; return its messages by topic and the JSON summary."""
     run_dir = tmp_path / name
     proc = subprocess.run(['robotica', 'run', str(SCENARIOS / f'{name}.yaml'),
-                           '--output-dir', str(run_dir), '--json', '--quiet'],
+                           '--output-dir', str(run_dir), '--json', '--quiet', *options],
                           capture_output=True, text=True, timeout=900)
     assert proc.returncode == 0, proc.stderr
     messages: dict = {}
@@ -127,4 +128,22 @@ def test_figure_eight_with_every_sensor(tmp_path):
     assert max(errors) < 1.0                       # DGPS: 2DRMS 1 m per fix
     assert math.sqrt(np.mean(np.square(errors))) < 0.4
     assert inside / len(errors) > 0.9, 'the EKF must mostly be within its own 3 sigma'
+    assert summary['rms_cross_track'] < 0.3
+
+
+@pytest.mark.parametrize('vehicle', ['synchronous', 'skid_steer', 'omni_three', 'mecanum',
+                                     'tricycle', 'bicycle', 'ackermann'])
+def test_every_vehicle_type_tracks_and_estimates(tmp_path, vehicle):
+    messages, summary = run(tmp_path, f'figure_eight_{vehicle}', '--duration', '15')
+    assert summary['lockstep_timeouts'] == 0
+    command_topic = '/vehicle_command' if vehicle in ('tricycle', 'bicycle', 'ackermann') \
+        else '/cmd_vel'
+    assert len(messages[command_topic]) >= 15 / 0.02
+    truth = {round(stamp(m), 6): m for m in messages['/ground_truth/odom']}
+    errors = [math.hypot(*(np.array(pose(m)[:2]) - pose(truth[round(stamp(m), 6)])[:2]))
+              for m in messages['/odom']]
+    assert max(errors) < 1.0
+    travelled = pose(messages['/ground_truth/odom'][-1])
+    assert math.hypot(travelled[0], travelled[1] - 2.0) == pytest.approx(2.0, abs=0.3), \
+        'after 15 s at 0.5 m/s the robot is on the upper circle of the eight'
     assert summary['rms_cross_track'] < 0.3

@@ -112,7 +112,12 @@ class OdometryNode(Node):
         self._gyro_angle = 0.0          # [rad] integrated since the last encoder reading
         self._gyro_variance = 0.0       # [rad²] of that integral
         self._last_gyro_t: float | None = None
-        self._rejected_logged = 0
+        self._max_rejections = declare(
+            self, 'gate.max_rejections', 10, 'Consecutive rejections of one sensor after which '
+            'the covariance is inflated by its innovation and the measurement applied',
+            low=1, high=100000, read_only=True)
+        self._streaks: dict[str, int] = {}
+        self._rejections = 0
         self._pub = self.create_publisher(Odometry, 'odom', STREAM_PUB_QOS)
         self.create_subscription(WheelEncoders, 'wheel_encoders', self._on_ticks, STREAM_SUB_QOS)
         if self._heading_source == 'gyro':
@@ -187,9 +192,15 @@ class OdometryNode(Node):
                                    throttle_duration_sec=5.0)
             return
         east, north, _ = self._origin.geodetic_to_enu(*values)
+
+        def inflation() -> list[float]:
+            state = self._ekf.state
+            predicted = state[:2] + (state[3:5] if state.size == 5 else 0.0)
+            return [(east - predicted[0]) ** 2, (north - predicted[1]) ** 2, 0.0]
+
         self._correct(lambda: self._ekf.update_position([east, north], covariance,
                                                         white_variance=self._white_variance),
-                      'GPS fix')
+                      'GPS fix', inflation)
 
     def _on_heading(self, msg: Imu) -> None:
         q = msg.orientation
@@ -199,18 +210,38 @@ class OdometryNode(Node):
             self.get_logger().warn('compass heading without a finite, positive variance; '
                                    'ignored', throttle_duration_sec=5.0)
             return
-        self._correct(lambda: self._ekf.update_heading(yaw, variance), 'compass heading')
+        self._correct(lambda: self._ekf.update_heading(yaw, variance), 'compass heading',
+                      lambda: [0.0, 0.0, math.remainder(yaw - self._ekf.pose[2], math.tau) ** 2])
 
-    def _correct(self, update, what: str) -> None:
+    def _correct(self, update, what: str, inflation) -> None:
+        """
+        Apply ``update``; after ``gate.max_rejections`` rejections in a row, re-open the filter.
+
+        A filter that has drifted (a gyro sample lost at start-up, a wheel that slipped) while
+        believing itself accurate rejects every correction from then on. After too many
+        consecutive rejections of one sensor, its innovation squared, ``inflation()``, is added
+        to the pose variances and the measurement is applied again.
+        """
         try:
             accepted = update()
         except ValueError as err:
             self.get_logger().warn(f'{what} refused: {err}', throttle_duration_sec=5.0)
             return
-        if not accepted:
-            self.get_logger().warn(f'{what} rejected by the innovation gate '
-                                   f'({self._ekf.rejected_updates} rejections so far)',
-                                   throttle_duration_sec=5.0)
+        if accepted:
+            self._streaks[what] = 0
+            return
+        self._streaks[what] = self._streaks.get(what, 0) + 1
+        self._rejections += 1
+        self.get_logger().warn(f'{what} rejected by the innovation gate ({self._rejections} '
+                               'rejections so far)', throttle_duration_sec=5.0)
+        if self._streaks[what] >= self._max_rejections:
+            covariance = self._ekf.full_covariance
+            covariance[np.diag_indices(3)] += inflation()
+            self._ekf.reset(self._ekf.state, covariance)
+            self._streaks[what] = 0
+            self.get_logger().error(
+                f'{self._max_rejections} {what}s in a row rejected: the estimate has drifted; '
+                f'covariance inflated, {what} {"applied" if update() else "still rejected"}')
 
     # -- output ------------------------------------------------------------------------------
     def _publish(self, t: float) -> None:

@@ -98,3 +98,30 @@ def test_bad_heading_source_is_refused(start_node, read_output):
     proc = start_node('robotica_sim', 'odometry', '-p', 'heading_source:=stars')
     assert proc.wait(timeout=30) == 2
     assert 'heading_source must be one of' in read_output(proc)
+
+
+def test_filter_that_rejects_every_heading_is_reopened(start_node, ros_node, spin,
+                                                       read_output):
+    # A certain heading of 0 (initial std. dev. 0) against a compass reading 1 rad with a
+    # variance of 1e-6 rad²: the gate rejects it; after gate.max_rejections = 3 in a row the
+    # heading variance grows by 1 rad² and the update gives 1 / (1 + 1e-6) of the innovation.
+    node, executor = ros_node
+    proc = start_node('robotica_sim', 'odometry', '-p', 'fuse_compass:=true',
+                      '-p', 'gate.max_rejections:=3')
+    odom = []
+    node.create_subscription(Odometry, 'odom', odom.append, QOS)
+    enc = node.create_publisher(WheelEncoders, 'wheel_encoders', QOS)
+    compass = node.create_publisher(Imu, 'compass/heading', QOS)
+    ready(node, executor, spin, enc, compass)
+    heading = Imu()
+    heading.orientation.z, heading.orientation.w = math.sin(0.5), math.cos(0.5)
+    heading.orientation_covariance[8] = 1e-6
+    for _ in range(3):
+        compass.publish(heading)
+        spin(executor, lambda: False, timeout=0.2)
+    enc.publish(ticks(0.0, 0, 0))
+    assert spin(executor, lambda: odom)
+    q = odom[-1].pose.pose.orientation
+    assert 2.0 * math.atan2(q.z, q.w) == pytest.approx(1.0 / (1.0 + 1e-6), abs=1e-6)
+    assert 'rejected by the innovation gate' in read_output(proc)
+    assert 'covariance inflated, compass heading applied' in read_output(proc)
