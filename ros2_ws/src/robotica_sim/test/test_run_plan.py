@@ -259,3 +259,54 @@ def test_bad_reference_is_a_scenario_error(tmp_path, reference, expected):
                  + reference)
     with pytest.raises(ScenarioError, match=expected):
         plan_run(load_scenario(str(path)))
+
+
+def test_every_sensor_and_a_steered_vehicle(tmp_path):
+    path = write(tmp_path, """\
+        seed: 3
+        robot:
+          type: ackermann
+          wheel_radius: 0.2
+          wheel_separation: 0.5
+          wheelbase: 0.8
+        path:
+          shape: circle
+          center: [0.0, 1.0]
+          radius: 1.0
+        sensors:
+          gyro: {enabled: true, preset: fog}
+          compass: {enabled: true, hard_iron: [1.0e-6, 0.0, 0.0]}
+          gps: {enabled: true, preset: rtk, origin: [40.0, -3.0, 600.0]}
+        odometry:
+          heading_source: gyro
+          fuse_gps: true
+          wheel_radius_error: 0.02
+          track_error: -0.05
+        """)
+    scenario = load_scenario(str(path))
+    nodes = by_name(plan_run(scenario))
+    assert {'gyro_emulator', 'compass_emulator', 'gps_emulator'} <= set(nodes)
+    seeds = [nodes[n].parameters['seed'] for n in ('encoder_emulator', 'gyro_emulator',
+                                                   'compass_emulator', 'gps_emulator')]
+    assert len(set(seeds)) == 4, 'every sensor draws its own noise'
+    assert nodes['gyro_emulator'].parameters['preset'] == 'fog'
+    assert nodes['compass_emulator'].parameters['hard_iron'] == [1.0e-6, 0.0, 0.0]
+    gps = nodes['gps_emulator'].parameters
+    odometry = nodes['odometry'].parameters
+    for params in (gps, odometry):
+        assert (params['origin.latitude'], params['origin.longitude'],
+                params['origin.altitude']) == (40.0, -3.0, 600.0)
+    # The odometry believes a nominal geometry off the true one by the given errors.
+    assert odometry['wheel_radius'] == pytest.approx(0.2 * 1.02)
+    assert odometry['wheel_separation'] == pytest.approx(0.5 * 0.95)
+    assert odometry['heading_source'] == 'gyro' and odometry['fuse_gps'] is True
+    # RTK: 2DRMS 2 cm with 2 mm white noise, 10 s correlation: the filter's model of it.
+    assert odometry['gps_bias.stddev'] == pytest.approx(math.sqrt((0.02 / 2 / math.sqrt(2)) ** 2
+                                                                  - 0.002 ** 2))
+    assert odometry['gps_bias.correlation_time'] == 10.0
+    tracker = nodes['path_tracker'].parameters
+    assert tracker['command_type'] == 'steering' and tracker['wheelbase'] == 0.8
+    assert nodes['simulator'].parameters['vehicle.type'] == 'ackermann'
+    topics = recorded_topics(scenario)
+    assert '/vehicle_command' in topics and '/cmd_vel' not in topics
+    assert {'/imu/data', '/compass/heading', '/compass/magnetic_field', '/gps/fix'} <= set(topics)

@@ -139,6 +139,8 @@ class OdometryNode(Node):
         if not (math.isfinite(rate) and math.isfinite(variance)):
             self.get_logger().warn('non-finite gyro reading; ignored', throttle_duration_sec=5.0)
             return
+        if self._last_gyro_t is None and self._last_ticks is not None:
+            self._last_gyro_t = self._last_ticks[2]   # samples missed: this rate covers the gap
         if self._last_gyro_t is not None and t > self._last_gyro_t:
             dt = t - self._last_gyro_t
             self._gyro_angle += rate * dt              # the rate held over the sample
