@@ -80,6 +80,11 @@ class OdometryNode(Node):
             for k, d in (('k_distance', 'Variance of the travelled distance per metre [m²/m]'),
                          ('k_heading', 'Heading variance per metre travelled [rad²/m]'),
                          ('k_turn', 'Heading variance per radian turned [rad²/rad]'))})
+        self._noise = noise
+        self._gyro_bias_stddev = declare(
+            self, 'gyro_bias_stddev', 1e-3, 'Uncertainty of the gyro bias [rad/s] (heading_source '
+            'gyro): its heading variance grows by (sigma dt)^2 per reading', low=0.0, high=1.0,
+            read_only=True)
         bias = [declare(self, 'gps_bias.' + k, default, d, low=low, high=high, read_only=True)
                 for k, default, d, low, high in (
                     ('stddev', 0.0, 'Std. dev. of the time-correlated GPS error per axis [m]; '
@@ -172,7 +177,10 @@ class OdometryNode(Node):
             # Keep the distance of the wheels, take the turn from the gyro (§7.7.3).
             centre, half_turn = 0.5 * (left + right), 0.5 * self._gyro_angle * self._track
             left, right = centre - half_turn, centre + half_turn
-            heading_variance = self._gyro_variance
+            # The reported white noise, plus what a gyro's covariance leaves out: its scale
+            # factor (k_turn per radian turned) and its bias over the interval.
+            heading_variance = (self._gyro_variance + self._noise.k_turn * abs(self._gyro_angle)
+                                + (self._gyro_bias_stddev * (t - t0)) ** 2)
             self._gyro_angle, self._gyro_variance = 0.0, 0.0
         before = self._ekf.pose
         after = odometry_increment(before, left, right, self._track, self._method)
