@@ -249,7 +249,7 @@ class OdometryNode(Node):
             covariance[np.diag_indices(3)] += inflation()
             self._ekf.reset(self._ekf.state, covariance)
             self._streaks[what] = 0
-            self.get_logger().error(
+            self.get_logger().warn(
                 f'{self._max_rejections} {what}s in a row rejected: the estimate has drifted; '
                 f'covariance inflated, {what} {"applied" if update() else "still rejected"}')
 
