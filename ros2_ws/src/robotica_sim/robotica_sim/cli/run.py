@@ -1,8 +1,8 @@
 """
 Run a scenario: every node in its own process, the whole run recorded to a bag.
 
-Starts the recorder and the nodes of the scenario's plan (a mobile robot: path publisher, encoder
-emulator, odometry, path tracker and simulator; a manipulator: trajectory publisher, joint
+Starts the recorder and the nodes of the scenario's plan (a mobile robot: path publisher, sensor
+emulators, odometry, path tracker and simulator; a manipulator: trajectory publisher, joint
 controller and arm simulator) with the scenario's parameters; waits until the recorder has
 matched every topic; starts the simulation; waits for its end time; stops every process (also
 on Ctrl-C or when a node dies) and prints the bag's path and a one-line summary.
@@ -40,7 +40,8 @@ EPILOG = """examples:
 """
 MATCH_SETTLE = 0.5   # [s] wall clock, see _wait_ready
 STOP_ORDER = ['simulator', 'path_tracker', 'joint_controller', 'odometry', 'encoder_emulator',
-              'path_publisher', 'joint_trajectory_publisher', 'recorder']
+              'gyro_emulator', 'compass_emulator', 'gps_emulator', 'path_publisher',
+              'joint_trajectory_publisher', 'recorder']
 
 
 class RunFailed(Exception):

@@ -18,7 +18,8 @@ odometry error model ``odometry_noise.*`` (or the gyro's reported variance), and
 is) makes a filter that takes each fix as independent overconfident; ``gps_bias.stddev`` > 0
 estimates it as two more, Gauss–Markov, states (``gps_bias.correlation_time``). Without fusion
 it is pure dead reckoning with a growing covariance. Measurements are applied when they
-arrive: a fix's latency (0.1 s for DGPS) and a gyro sample that arrives after the encoder
+arrive, except that one newer than the estimate waits until an encoder reading reaches its
+time; a fix's latency (0.1 s for DGPS) and a gyro sample that arrives after the encoder
 reading of the same step (its turn then counts at the next reading) are not compensated.
 Publishes ``odom`` (nav_msgs/Odometry: pose in ``odom_frame_id``, twist in ``base_frame_id``,
 REP-105, pose covariance of x, y and yaw) at each encoder reading.
@@ -41,6 +42,8 @@ from robotica_msgs.msg import WheelEncoders
 from sensor_msgs.msg import Imu, NavSatFix, NavSatStatus
 
 HEADING_SOURCES = ('encoders', 'gyro')
+PENDING_LIMIT = 1000   # measurements waiting for the estimate to reach their time
+GYRO_WAIT_READINGS = 25   # encoder readings that wait for a late gyro (0.5 s at 50 Hz)
 
 
 class OdometryNode(Node):
@@ -114,14 +117,15 @@ class OdometryNode(Node):
                                    read_only=True)
         self._last_ticks: tuple[int, int, float] | None = None
         self._twist = (0.0, 0.0)
-        self._gyro_angle = 0.0          # [rad] integrated since the last encoder reading
-        self._gyro_variance = 0.0       # [rad²] of that integral
+        self._gyro_increments: list[tuple[float, float, float]] = []   # (end t, angle, var)
         self._last_gyro_t: float | None = None
+        self._readings: list[tuple[int, int, float, int]] = []   # encoder readings waiting
         self._max_rejections = declare(
             self, 'gate.max_rejections', 10, 'Consecutive rejections of one sensor after which '
             'the covariance is inflated by its innovation and the measurement applied',
             low=1, high=100000, read_only=True)
         self._streaks: dict[str, int] = {}
+        self._pending: list[tuple] = []   # (t, update, what, inflation), see _defer
         self._rejections = 0
         self._pub = self.create_publisher(Odometry, 'odom', STREAM_PUB_QOS)
         self.create_subscription(WheelEncoders, 'wheel_encoders', self._on_ticks, STREAM_SUB_QOS)
@@ -147,20 +151,46 @@ class OdometryNode(Node):
         if self._last_gyro_t is None and self._last_ticks is not None:
             self._last_gyro_t = self._last_ticks[2]   # samples missed: this rate covers the gap
         if self._last_gyro_t is not None and t > self._last_gyro_t:
-            dt = t - self._last_gyro_t
-            self._gyro_angle += rate * dt              # the rate held over the sample
-            self._gyro_variance += max(variance, 0.0) * dt * dt
-        self._last_gyro_t = t
+            dt = t - self._last_gyro_t                 # the rate held over the sample
+            self._gyro_increments.append((t, rate * dt, max(variance, 0.0) * dt * dt))
+        if self._last_gyro_t is None or t > self._last_gyro_t:
+            self._last_gyro_t = t
+        self._drain_readings()
 
     def _on_ticks(self, msg: WheelEncoders) -> None:
         if msg.ticks_per_revolution < 1:
             self.get_logger().warn('wheel_encoders with ticks_per_revolution 0; ignored',
                                    throttle_duration_sec=5.0)
             return
-        t = stamp_to_seconds(msg.header.stamp)
+        self._readings.append((msg.left_ticks, msg.right_ticks,
+                               stamp_to_seconds(msg.header.stamp), msg.ticks_per_revolution))
+        self._drain_readings()
+
+    def _drain_readings(self) -> None:
+        """
+        Process the encoder readings in order, each once its heading increment is known.
+
+        With the heading from the gyro, a reading of time t waits for the gyro sample of time t
+        (a separate process may deliver it later); after ``GYRO_WAIT_READINGS`` readings
+        without it, the oldest goes on with the gyro samples so far, and the node says so.
+        """
+        while self._readings:
+            t = self._readings[0][2]
+            waiting = (self._heading_source == 'gyro' and self._last_ticks is not None
+                       and (self._last_gyro_t is None or self._last_gyro_t < t - 1e-9))
+            if waiting and len(self._readings) <= GYRO_WAIT_READINGS:
+                return
+            if waiting:
+                self.get_logger().warn(f'no gyro sample up to t = {t:.3f} s: heading from the '
+                                       'samples so far', throttle_duration_sec=5.0)
+            self._process_reading(*self._readings.pop(0))
+
+    def _process_reading(self, left_ticks: int, right_ticks: int, t: float,
+                         ticks_per_revolution: int) -> None:
         if self._last_ticks is None:
-            self._last_ticks = (msg.left_ticks, msg.right_ticks, t)
-            self._gyro_angle, self._gyro_variance = 0.0, 0.0
+            self._last_ticks = (left_ticks, right_ticks, t)
+            self._gyro_increments = [g for g in self._gyro_increments if g[0] > t + 1e-9]
+            self._apply_due(t)
             self._publish(t)
             return
         left0, right0, t0 = self._last_ticks
@@ -168,25 +198,28 @@ class OdometryNode(Node):
             self.get_logger().warn(f'encoder time did not advance ({t0} -> {t} s); reading '
                                    'deferred', throttle_duration_sec=5.0)
             return
-        metres_per_tick = 2.0 * math.pi * self._radius / msg.ticks_per_revolution
-        left = metres_per_tick * (msg.left_ticks - left0)
-        right = metres_per_tick * (msg.right_ticks - right0)
-        self._last_ticks = (msg.left_ticks, msg.right_ticks, t)
+        metres_per_tick = 2.0 * math.pi * self._radius / ticks_per_revolution
+        left = metres_per_tick * (left_ticks - left0)
+        right = metres_per_tick * (right_ticks - right0)
+        self._last_ticks = (left_ticks, right_ticks, t)
         heading_variance = None
         if self._heading_source == 'gyro':
+            used = [g for g in self._gyro_increments if g[0] <= t + 1e-9]
+            self._gyro_increments = [g for g in self._gyro_increments if g[0] > t + 1e-9]
+            angle = sum(g[1] for g in used)
             # Keep the distance of the wheels, take the turn from the gyro (§7.7.3).
-            centre, half_turn = 0.5 * (left + right), 0.5 * self._gyro_angle * self._track
+            centre, half_turn = 0.5 * (left + right), 0.5 * angle * self._track
             left, right = centre - half_turn, centre + half_turn
             # The reported white noise, plus what a gyro's covariance leaves out: its scale
             # factor (k_turn per radian turned) and its bias over the interval.
-            heading_variance = (self._gyro_variance + self._noise.k_turn * abs(self._gyro_angle)
+            heading_variance = (sum(g[2] for g in used) + self._noise.k_turn * abs(angle)
                                 + (self._gyro_bias_stddev * (t - t0)) ** 2)
-            self._gyro_angle, self._gyro_variance = 0.0, 0.0
         before = self._ekf.pose
         after = odometry_increment(before, left, right, self._track, self._method)
         distance, turn = increment_between_poses(before, after)
         self._ekf.predict(distance, turn, heading_variance=heading_variance, dt=t - t0)
         self._twist = (0.5 * (left + right) / (t - t0), (right - left) / self._track / (t - t0))
+        self._apply_due(t)
         self._publish(t)
 
     def _on_fix(self, msg: NavSatFix) -> None:
@@ -208,9 +241,10 @@ class OdometryNode(Node):
             predicted = state[:2] + (state[3:5] if state.size == 5 else 0.0)
             return [(east - predicted[0]) ** 2, (north - predicted[1]) ** 2, 0.0]
 
-        self._correct(lambda: self._ekf.update_position([east, north], covariance,
-                                                        white_variance=self._white_variance),
-                      'GPS fix', inflation)
+        self._defer(stamp_to_seconds(msg.header.stamp),
+                    lambda: self._ekf.update_position([east, north], covariance,
+                                                      white_variance=self._white_variance),
+                    'GPS fix', inflation)
 
     def _on_heading(self, msg: Imu) -> None:
         q = msg.orientation
@@ -220,8 +254,34 @@ class OdometryNode(Node):
             self.get_logger().warn('compass heading without a finite, positive variance; '
                                    'ignored', throttle_duration_sec=5.0)
             return
-        self._correct(lambda: self._ekf.update_heading(yaw, variance), 'compass heading',
-                      lambda: [0.0, 0.0, math.remainder(yaw - self._ekf.pose[2], math.tau) ** 2])
+        self._defer(stamp_to_seconds(msg.header.stamp),
+                    lambda: self._ekf.update_heading(yaw, variance), 'compass heading',
+                    lambda: [0.0, 0.0, math.remainder(yaw - self._ekf.pose[2], math.tau) ** 2])
+
+    def _defer(self, t: float, update, what: str, inflation) -> None:
+        """
+        Apply a measurement of time ``t`` [s] once the estimate has reached ``t``.
+
+        The sensors are separate processes: a compass reading of step k may arrive before the
+        encoder reading that moves the estimate to step k, and compared with the pose of step
+        k - 1 it would carry the turn of one step as an error. It waits in a queue (at most
+        ``PENDING_LIMIT``) until then; a reading older than the estimate is applied at once.
+        """
+        if self._last_ticks is not None and t <= self._last_ticks[2] + 1e-9:
+            self._correct(update, what, inflation)
+            return
+        if len(self._pending) >= PENDING_LIMIT:
+            self._pending.pop(0)
+            self.get_logger().warn('no encoder reading reaches the time of the queued '
+                                   'measurements: dropping the oldest', throttle_duration_sec=5.0)
+        self._pending.append((t, update, what, inflation))
+
+    def _apply_due(self, t: float) -> None:
+        """Apply the queued measurements of time <= ``t`` [s], in time order."""
+        due = sorted((p for p in self._pending if p[0] <= t + 1e-9), key=lambda p: p[0])
+        self._pending = [p for p in self._pending if p[0] > t + 1e-9]
+        for _, update, what, inflation in due:
+            self._correct(update, what, inflation)
 
     def _correct(self, update, what: str, inflation) -> None:
         """
