@@ -173,11 +173,13 @@ class OdometryNode(Node):
         With the heading from the gyro, a reading of time t waits for the gyro sample of time t
         (a separate process may deliver it later); after ``GYRO_WAIT_READINGS`` readings
         without it, the oldest goes on with the gyro samples so far, and the node says so.
+        Until the gyro's first sample nothing waits (in lockstep, waiting for a gyro that
+        starts late would stall the loop); that sample's rate then covers the gap.
         """
         while self._readings:
             t = self._readings[0][2]
             waiting = (self._heading_source == 'gyro' and self._last_ticks is not None
-                       and (self._last_gyro_t is None or self._last_gyro_t < t - 1e-9))
+                       and self._last_gyro_t is not None and self._last_gyro_t < t - 1e-9)
             if waiting and len(self._readings) <= GYRO_WAIT_READINGS:
                 return
             if waiting:
