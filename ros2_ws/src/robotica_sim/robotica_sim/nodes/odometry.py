@@ -196,9 +196,12 @@ class OdometryNode(Node):
             self._publish(t)
             return
         left0, right0, t0 = self._last_ticks
-        if t <= t0:   # its travel counts at the next reading
-            self.get_logger().warn(f'encoder time did not advance ({t0} -> {t} s); reading '
-                                   'deferred', throttle_duration_sec=5.0)
+        if abs(t - t0) <= 1e-9:   # the same state again (lockstep start-up): answer it again
+            self._publish(t)       # any travel since counts at the next reading
+            return
+        if t < t0:
+            self.get_logger().warn(f'encoder time went back ({t0} -> {t} s); reading ignored',
+                                   throttle_duration_sec=5.0)
             return
         metres_per_tick = 2.0 * math.pi * self._radius / ticks_per_revolution
         left = metres_per_tick * (left_ticks - left0)
@@ -312,7 +315,8 @@ class OdometryNode(Node):
             self._ekf.reset(self._ekf.state, covariance)
             self._streaks[what] = 0
             self.get_logger().warn(
-                f'{self._max_rejections} {what}s in a row rejected: the estimate has drifted; '
+                f'{self._max_rejections} rejections of the {what} in a row: the estimate has '
+                'drifted; '
                 f'covariance inflated, {what} {"applied" if update() else "still rejected"}')
 
     # -- output ------------------------------------------------------------------------------
