@@ -4,8 +4,10 @@ Mobile-robot path tracking (book ch. 9): path geometry and the tracking laws.
 :mod:`robotica_ctrl.mobile.path` projects a pose onto a polyline path; the laws turn poses into
 velocity commands: :mod:`~robotica_ctrl.mobile.pure_pursuit` (§9.3.1),
 :mod:`~robotica_ctrl.mobile.trajectory_tracking` (§9.4.2, Canudas de Wit et al.),
-:mod:`~robotica_ctrl.mobile.frenet_path_following` (§9.4.3–9.4.4) and
+:mod:`~robotica_ctrl.mobile.frenet_path_following` (§9.4.3–9.4.4),
+:mod:`~robotica_ctrl.mobile.gpc` (generalised predictive control, §9.5) and
 :mod:`~robotica_ctrl.mobile.open_loop` (a profile played without feedback).
 """
 
-__all__ = ['frenet_path_following', 'open_loop', 'path', 'pure_pursuit', 'trajectory_tracking']
+__all__ = ['frenet_path_following', 'gpc', 'open_loop', 'path', 'pure_pursuit',
+           'trajectory_tracking']
