@@ -5,9 +5,13 @@ Mobile-robot path tracking (book ch. 9): path geometry and the tracking laws.
 velocity commands: :mod:`~robotica_ctrl.mobile.pure_pursuit` (§9.3.1),
 :mod:`~robotica_ctrl.mobile.trajectory_tracking` (§9.4.2, Canudas de Wit et al.),
 :mod:`~robotica_ctrl.mobile.frenet_path_following` (§9.4.3–9.4.4),
-:mod:`~robotica_ctrl.mobile.gpc` (generalised predictive control, §9.5) and
-:mod:`~robotica_ctrl.mobile.open_loop` (a profile played without feedback).
+:mod:`~robotica_ctrl.mobile.gpc` (generalised predictive control, §9.5),
+:mod:`~robotica_ctrl.mobile.quintic_tracker` (Shin's quintic, §9.3.2),
+:mod:`~robotica_ctrl.mobile.adaptive_lookahead` (pure pursuit with L by speed, curvature or
+error), :mod:`~robotica_ctrl.mobile.reactive` (wall following, corridor centring, VFF, generalised
+potential, speed modulation, §9.6) and :mod:`~robotica_ctrl.mobile.open_loop` (a profile played
+without feedback).
 """
 
-__all__ = ['frenet_path_following', 'gpc', 'open_loop', 'path', 'pure_pursuit',
-           'trajectory_tracking']
+__all__ = ['adaptive_lookahead', 'frenet_path_following', 'gpc', 'open_loop', 'path',
+           'pure_pursuit', 'quintic_tracker', 'reactive', 'trajectory_tracking']
