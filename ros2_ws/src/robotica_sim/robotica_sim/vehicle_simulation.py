@@ -84,9 +84,10 @@ class VehicleSimulation:
         self.params = params
         m = len(kinematics.actuator_names)
         self._m = m
-        self._lags = np.array([params.steering_time_constant if steering
-                               else params.traction_time_constant
-                               for steering in kinematics.steering_actuators])
+        self._steering = np.array(kinematics.steering_actuators, dtype=bool)
+        self._lags = np.where(self._steering, params.steering_time_constant,
+                              params.traction_time_constant)
+        self._lagged = self._lags > 0.0       # the others take their target at once
         self._state = np.concatenate([pose, np.zeros(m), [0.0, 0.0]])
         self._step = 0
         self._command = np.zeros(3)
@@ -158,9 +159,8 @@ class VehicleSimulation:
 
     def _stop_targets(self) -> NDArray[np.float64]:
         stop = np.zeros(self._m)
-        steering = np.array(self.kinematics.steering_actuators)
         if self.kinematics.steered:   # keep the wheels where they are steered
-            stop[steering] = self._state[3:3 + self._m][steering]
+            stop[self._steering] = self._state[3:3 + self._m][self._steering]
         return stop
 
     # -- stepping -----------------------------------------------------------------------------
@@ -170,7 +170,7 @@ class VehicleSimulation:
         scale = 1.0 - self.params.longitudinal_slip
         vx, vy, omega = self.kinematics.body_twist(actuators)
         c, s = math.cos(state[2]), math.sin(state[2])
-        lagged = self._lags > 0.0
+        lagged = self._lagged
         rates = np.zeros(self._m)
         rates[lagged] = (targets[lagged] - actuators[lagged]) / self._lags[lagged]
         return np.concatenate([[scale * (vx * c - vy * s), scale * (vx * s + vy * c),
@@ -179,7 +179,7 @@ class VehicleSimulation:
     def step(self) -> None:
         """Advance one step with the current command (a stop when it is stale)."""
         targets = self._stop_targets() if self.command_is_stale() else self._targets
-        instant = self._lags == 0.0
+        instant = ~self._lagged
         self._state[3:3 + self._m][instant] = targets[instant]
         h = self.params.step_period / self.params.rk4_substeps
         t = self.t

@@ -13,6 +13,7 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike
 
+from robotica_kin.mobile.unicycle import _vector
 from robotica_kin.types import Vector
 
 __all__ = [
@@ -43,15 +44,6 @@ class DifferentialDriveParams:
             value = getattr(self, name)
             if not (math.isfinite(value) and value > 0.0):
                 raise ValueError(f'{name} must be finite and > 0 m, got {value!r}')
-
-
-def _finite_vector(value: ArrayLike, size: int, name: str) -> Vector:
-    array = np.asarray(value, dtype=np.float64)
-    if array.shape != (size,):
-        raise ValueError(f'{name} must have shape ({size},), got {array.shape}')
-    if not np.all(np.isfinite(array)):
-        raise ValueError(f'{name} must be finite, got {array!r}')
-    return array
 
 
 def wheel_speeds_to_twist(
@@ -87,7 +79,7 @@ def wheel_speeds_to_twist(
     (0.275, 0.05)
 
     """
-    w_left, w_right = _finite_vector((omega_left, omega_right), 2, 'wheel speeds')
+    w_left, w_right = _vector((omega_left, omega_right), 2, 'wheel speeds')
     c, b = params.wheel_radius, params.wheel_separation
     return float(c * (w_right + w_left) / 2.0), float(c * (w_right - w_left) / b)
 
@@ -125,7 +117,7 @@ def twist_to_wheel_speeds(
     (1.0, 1.2)
 
     """
-    v_, w_ = _finite_vector((v, omega), 2, 'twist')
+    v_, w_ = _vector((v, omega), 2, 'twist')
     c, half_b = params.wheel_radius, 0.5 * params.wheel_separation
     return float((v_ - half_b * w_) / c), float((v_ + half_b * w_) / c)
 
@@ -170,8 +162,8 @@ def differential_drive_deriv(
     array([0.275, 0.   , 0.05 , 1.   , 1.2  ])
 
     """
-    x = _finite_vector(state, 5, 'state')
-    w_left, w_right = _finite_vector(wheel_speeds, 2, 'wheel_speeds')
+    x = _vector(state, 5, 'state')
+    w_left, w_right = _vector(wheel_speeds, 2, 'wheel_speeds')
     v, omega = wheel_speeds_to_twist(params, w_left, w_right)
     theta = x[2]
     return np.array([v * np.cos(theta), v * np.sin(theta), omega, w_left, w_right])

@@ -42,6 +42,7 @@ from robotica_kin.mobile.omnidirectional import (
     mecanum_direct, mecanum_inverse, MecanumParams, omni_three_direct, omni_three_inverse,
     OmniThreeParams)
 from robotica_kin.mobile.skid_steer import skid_steer_direct, skid_steer_inverse, SkidSteerParams
+from robotica_kin.mobile.unicycle import _vector
 from robotica_kin.types import Vector
 
 __all__ = ['STEERED_TYPES', 'VEHICLE_TYPES', 'VehicleGeometry', 'VehicleKinematics', 'as_command',
@@ -298,7 +299,4 @@ def vehicle_kinematics(vehicle_type: str, geometry: VehicleGeometry | None = Non
 
 def as_command(command: ArrayLike) -> Vector:
     """Return ``command`` as a finite float64 (3,) vector, or raise ValueError."""
-    array = np.asarray(command, dtype=np.float64)
-    if array.shape != (3,) or not np.isfinite(array).all():
-        raise ValueError(f'command must be 3 finite numbers, got {command!r}')
-    return array
+    return _vector(command, 3, 'command')

@@ -20,7 +20,7 @@ import math
 from nav_msgs.msg import Odometry
 from rclpy.experimental import EventsExecutor
 from rclpy.node import Node
-from robotica_kin.nodes.convert import yaw_to_quaternion
+from robotica_kin.nodes.convert import quaternion_to_yaw, yaw_to_quaternion
 from robotica_kin.nodes.entry_point import run_node
 from robotica_kin.nodes.parameters import declare
 from robotica_kin.nodes.qos import STREAM_PUB_QOS, STREAM_SUB_QOS
@@ -75,8 +75,7 @@ class CompassEmulatorNode(Node):
                                'deg (1 sigma)')
 
     def _on_truth(self, msg: Odometry) -> None:
-        q = msg.pose.pose.orientation
-        yaw = math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
+        yaw = quaternion_to_yaw(msg.pose.pose.orientation)
         if not math.isfinite(yaw):
             self.get_logger().warn('non-finite ground truth; no reading',
                                    throttle_duration_sec=5.0)

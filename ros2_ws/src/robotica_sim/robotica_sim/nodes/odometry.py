@@ -34,7 +34,7 @@ from robotica_kin.geodetic import GeodeticOrigin
 from robotica_kin.mobile.ekf_localization import (EkfLocalization, increment_between_poses,
                                                   OdometryNoise)
 from robotica_kin.mobile.odometry import odometry_increment, ODOMETRY_METHODS
-from robotica_kin.nodes.convert import odometry_message, stamp_to_seconds
+from robotica_kin.nodes.convert import odometry_message, quaternion_to_yaw, stamp_to_seconds
 from robotica_kin.nodes.entry_point import run_node
 from robotica_kin.nodes.parameters import declare
 from robotica_kin.nodes.qos import STREAM_PUB_QOS, STREAM_SUB_QOS
@@ -252,8 +252,7 @@ class OdometryNode(Node):
                     'GPS fix', inflation)
 
     def _on_heading(self, msg: Imu) -> None:
-        q = msg.orientation
-        yaw = math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
+        yaw = quaternion_to_yaw(msg.orientation)
         variance = msg.orientation_covariance[8]
         if not (math.isfinite(yaw) and math.isfinite(variance) and variance > 0.0):
             self.get_logger().warn('compass heading without a finite, positive variance; '
