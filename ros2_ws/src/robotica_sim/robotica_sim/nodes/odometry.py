@@ -119,6 +119,7 @@ class OdometryNode(Node):
         self._twist = (0.0, 0.0)
         self._gyro_increments: list[tuple[float, float, float]] = []   # (end t, angle, var)
         self._last_gyro_t: float | None = None
+        self._first_reading_t: float | None = None
         self._readings: list[tuple[int, int, float, int]] = []   # encoder readings waiting
         self._max_rejections = declare(
             self, 'gate.max_rejections', 10, 'Consecutive rejections of one sensor after which '
@@ -148,8 +149,9 @@ class OdometryNode(Node):
         if not (math.isfinite(rate) and math.isfinite(variance)):
             self.get_logger().warn('non-finite gyro reading; ignored', throttle_duration_sec=5.0)
             return
-        if self._last_gyro_t is None and self._last_ticks is not None:
-            self._last_gyro_t = self._last_ticks[2]   # samples missed: this rate covers the gap
+        if self._last_gyro_t is None and self._first_reading_t is not None:
+            # Samples missed at start-up: this rate covers the gap since the first reading.
+            self._last_gyro_t = self._first_reading_t
         if self._last_gyro_t is not None and t > self._last_gyro_t:
             dt = t - self._last_gyro_t                 # the rate held over the sample
             self._gyro_increments.append((t, rate * dt, max(variance, 0.0) * dt * dt))
@@ -191,6 +193,7 @@ class OdometryNode(Node):
                          ticks_per_revolution: int) -> None:
         if self._last_ticks is None:
             self._last_ticks = (left_ticks, right_ticks, t)
+            self._first_reading_t = t
             self._gyro_increments = [g for g in self._gyro_increments if g[0] > t + 1e-9]
             self._apply_due(t)
             self._publish(t)
