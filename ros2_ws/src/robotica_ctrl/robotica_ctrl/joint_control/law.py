@@ -22,27 +22,45 @@ __all__ = ['JointControlLaw', 'JointReference', 'JointState', 'check_dt', 'gain_
            'per_joint']
 
 
+_FLOAT64 = np.dtype(np.float64)
+
+
 def _vector(name: str, value: ArrayLike) -> NDArray[np.float64]:
-    """Return ``value`` as a read-only finite float64 vector (n,), or raise ValueError."""
+    """Return ``value`` as a float64 vector (n,) copy, or raise ValueError (finiteness apart)."""
+    if type(value) is np.ndarray and value.dtype == _FLOAT64 and value.ndim == 1 and value.size:
+        return value.copy()   # the per-step path of the nodes and the benchmark
     try:
         array = np.array(value, dtype=np.float64)
     except (TypeError, ValueError) as err:
         raise ValueError(f'{name} must be a vector of numbers, got {value!r}') from err
     if array.ndim != 1 or array.size == 0:
         raise ValueError(f'{name} must have shape (n,) with n >= 1, got shape {array.shape}')
-    if not all_finite(array):
-        raise ValueError(f'{name} must be finite, got {array!r}')
-    array.setflags(write=False)
     return array
 
 
 def _same_shape(owner: Any, *names: str) -> None:
-    arrays = [_vector(name, getattr(owner, name)) for name in names]
+    """
+    Freeze the fields ``names`` of ``owner`` as read-only finite float64 vectors of one shape.
+
+    Finiteness is tested once for all of them (the sum of their squared norms is finite unless
+    an element is not, or the sum overflows); only then is each one tested, to name it.
+    """
+    arrays = []
+    squares = 0.0
+    for name in names:   # plain loops: this runs on every control step
+        array = _vector(name, getattr(owner, name))
+        squares += array.dot(array)
+        arrays.append(array)
+        if array.shape != arrays[0].shape:
+            raise ValueError(f'{", ".join(names)} must have the same shape, got '
+                             f'{[np.shape(getattr(owner, other)) for other in names]}')
+    if not math.isfinite(squares):
+        for name, array in zip(names, arrays):
+            if not all_finite(array):
+                raise ValueError(f'{name} must be finite, got {array!r}')
     for name, array in zip(names, arrays):
+        array.setflags(write=False)
         object.__setattr__(owner, name, array)
-    if any(array.shape != arrays[0].shape for array in arrays):
-        raise ValueError(f'{", ".join(names)} must have the same shape, got '
-                         f'{[array.shape for array in arrays]}')
 
 
 @dataclass(frozen=True, eq=False)
