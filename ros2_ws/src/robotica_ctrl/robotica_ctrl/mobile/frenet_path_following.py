@@ -47,6 +47,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from robotica_ctrl.mobile.path import PathProjection, PolylinePath
+from robotica_ctrl.mobile.tracker_base import check_pose, PathTrackerBase
 from robotica_kin.angles import wrap_to_pi
 
 __all__ = [
@@ -151,7 +152,7 @@ def frenet_errors(pose: ArrayLike, projection: PathProjection,
     FrenetErrors(lateral_error=-0.5, heading_error=0.25, path_curvature=0.0)
 
     """
-    x = _pose(pose)
+    x = check_pose(pose)
     return FrenetErrors(projection.cross_track,
                         wrap_to_pi(float(x[2]) - projection.tangent_heading),
                         float(path_curvature))
@@ -403,7 +404,7 @@ class FrenetCommand:
     finished: bool
 
 
-class FrenetPathFollower:
+class FrenetPathFollower(PathTrackerBase[FrenetParams]):
     """
     Path follower in the Frenet frame of a :class:`PolylinePath` (book §9.4.3).
 
@@ -434,26 +435,8 @@ class FrenetPathFollower:
     """
 
     def __init__(self, path: PolylinePath, params: FrenetParams) -> None:
-        self._path = path
-        self._params = params
+        super().__init__(path, params)
         self._curvature = _CurvatureProfile(path, params.curvature_window)
-        self._progress = 0.0
-        self._finished = False
-
-    @property
-    def path(self) -> PolylinePath:
-        """Return the reference path."""
-        return self._path
-
-    @property
-    def params(self) -> FrenetParams:
-        """Return the current tunables."""
-        return self._params
-
-    @property
-    def progress(self) -> float:
-        """Return the arc length [m] of the last projection onto the path (0 after a reset)."""
-        return self._progress
 
     def set_params(self, params: FrenetParams) -> None:
         """
@@ -468,11 +451,6 @@ class FrenetPathFollower:
         if params.curvature_window != self._params.curvature_window:
             self._curvature = _CurvatureProfile(self._path, params.curvature_window)
         self._params = params
-
-    def reset(self) -> None:
-        """Restart from the beginning of the path: progress 0, not finished."""
-        self._progress = 0.0
-        self._finished = False
 
     def path_curvature(self, s: float) -> float:
         """
@@ -499,7 +477,8 @@ class FrenetPathFollower:
         progress; (2) d, θ̃ (:func:`frenet_errors`) and c(s); (3) ω at the desired speed v by
         (9.90) with (9.93) or (9.99) (:func:`frenet_angular_velocity`), γ = ω / v; (4) if
         |ω| > ``max_angular_velocity``, v = max_angular_velocity / |γ| and ω = v γ. Once the
-        remaining arc length is within ``goal_tolerance`` the command is zero and stays so
+        remaining arc length and the distance to the last point are both within
+        ``goal_tolerance`` the command is zero and stays so
         until :meth:`reset`; as for :class:`~robotica_ctrl.mobile.pure_pursuit.PurePursuit`,
         a closed path is driven once round from its start.
 
@@ -518,14 +497,9 @@ class FrenetPathFollower:
             If ``pose`` is not a finite (3,) vector.
 
         """
-        x = _pose(pose)
+        x, projection = self._locate(pose)
         params = self._params
-        path = self._path
-        projection = path.project(x[:2], s_hint=self._progress, window=params.search_window)
-        self._progress = projection.s
         errors = frenet_errors(x, projection, self._curvature(projection.s))
-        if path.length - projection.s <= params.goal_tolerance:
-            self._finished = True
         if self._finished:
             return FrenetCommand(0.0, 0.0, 0.0, errors.lateral_error, errors.heading_error,
                                  errors.path_curvature, projection, True)
@@ -763,14 +737,6 @@ class _CurvatureProfile:
             return float(self._turn[first:stop] @ ramp)
 
         return (theta(hi) - theta(lo)) / (hi - lo)
-
-
-def _pose(pose: ArrayLike) -> NDArray[np.float64]:
-    """Return ``pose`` as a finite (3,) float64 vector, or raise ValueError."""
-    x = np.asarray(pose, dtype=np.float64)
-    if x.shape != (3,) or not np.all(np.isfinite(x)):
-        raise ValueError(f'pose must be a finite (3,) vector (x, y, theta), got {pose!r}')
-    return x
 
 
 def _error_triple(errors: FrenetErrors | ArrayLike) -> tuple[float, float, float]:

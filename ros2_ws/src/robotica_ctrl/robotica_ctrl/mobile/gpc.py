@@ -52,6 +52,7 @@ import numbers
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from robotica_ctrl.mobile.path import PathProjection, PolylinePath
+from robotica_ctrl.mobile.tracker_base import PathTrackerBase
 from robotica_kin.angles import wrap_to_pi
 
 __all__ = ['diophantine', 'GpcController', 'GpcPathTracker', 'GpcTrackerCommand',
@@ -700,7 +701,7 @@ class GpcTrackerCommand:
             object.__setattr__(self, name, value)
 
 
-class GpcPathTracker:
+class GpcPathTracker(PathTrackerBase[GpcTrackerParams]):
     """
     GPC path tracker of a :class:`PolylinePath` (book §9.5, fig. 9.28; Ollero & Amidi 1991).
 
@@ -745,26 +746,10 @@ class GpcPathTracker:
     """
 
     def __init__(self, path: PolylinePath, params: GpcTrackerParams) -> None:
-        self._path = path
-        self._params = params
+        super().__init__(path, params)
         self._model_speed = params.linear_velocity
         self._controller = _build_controller(params, self._model_speed)
         self.reset()
-
-    @property
-    def path(self) -> PolylinePath:
-        """Return the reference path."""
-        return self._path
-
-    @property
-    def params(self) -> GpcTrackerParams:
-        """Return the current tunables."""
-        return self._params
-
-    @property
-    def progress(self) -> float:
-        """Return the arc length [m] of the last projection (0 after a reset)."""
-        return self._progress
 
     @property
     def controller(self) -> GpcController:
@@ -797,8 +782,7 @@ class GpcPathTracker:
         """
         if not math.isfinite(curvature):
             raise ValueError(f'curvature must be finite, got {curvature!r}')
-        self._progress = 0.0
-        self._finished = False
+        super().reset()
         self._history: deque[tuple[float, float]] = deque(maxlen=_MAX_HISTORY)
         self._du_past: deque[float] = deque(maxlen=_MAX_HISTORY)
         self._u = float(curvature)
@@ -836,26 +820,19 @@ class GpcPathTracker:
         (1.0, True)
 
         """
-        x = np.asarray(pose, dtype=np.float64)
-        if x.shape != (3,) or not np.all(np.isfinite(x)):
-            raise ValueError(f'pose must be a finite (3,) vector (x, y, theta), got {pose!r}')
         params = self._params
         v = params.linear_velocity if speed is None else speed
         if not (math.isfinite(v) and v > 0.0):
             raise ValueError(f'speed must be positive and finite, got {speed!r}')
+        x, projection = self._locate(pose)
         if abs(v - self._model_speed) > params.model_speed_tolerance * self._model_speed:
             self._controller = _build_controller(params, v)
             self._model_speed = v
         ctrl = self._controller
         path = self._path
-        projection = path.project(x[:2], s_hint=self._progress, window=params.search_window)
-        self._progress = projection.s
         e = projection.cross_track
         heading_error = float(wrap_to_pi(float(x[2]) - projection.tangent_heading))
-        end_distance = float(np.hypot(*(path.points[-1] - x[:2])))
-        if self._finished or max(path.length - projection.s, end_distance) <= \
-                params.goal_tolerance:
-            self._finished = True
+        if self._finished:
             zeros = np.zeros(params.n2 - params.n1 + 1)
             return GpcTrackerCommand(0.0, 0.0, 0.0, e, heading_error, projection, zeros, zeros,
                                      True)

@@ -22,7 +22,8 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from robotica_ctrl.mobile.path import PathProjection, PolylinePath
+from robotica_ctrl.mobile.path import PathProjection
+from robotica_ctrl.mobile.tracker_base import PathTrackerBase
 
 __all__ = ['PurePursuit', 'PurePursuitCommand', 'PurePursuitParams', 'curvature_to_point']
 
@@ -143,7 +144,7 @@ class PurePursuitCommand:
         object.__setattr__(self, 'goal_point', goal)
 
 
-class PurePursuit:
+class PurePursuit(PathTrackerBase[PurePursuitParams]):
     """
     Pure-pursuit tracker of a :class:`PolylinePath` (book §9.3.1, fig. 9.4).
 
@@ -162,59 +163,13 @@ class PurePursuit:
 
     Examples
     --------
+    >>> from robotica_ctrl.mobile.path import PolylinePath
     >>> tracker = PurePursuit(PolylinePath([[0.0, 0.0], [5.0, 0.0]]), PurePursuitParams())
     >>> cmd = tracker.update([0.0, 0.0, 0.0])
     >>> cmd.linear, cmd.curvature, cmd.goal_point
     (0.5, 0.0, array([0.5, 0. ]))
 
     """
-
-    def __init__(self, path: PolylinePath, params: PurePursuitParams) -> None:
-        self._path = path
-        self._params = params
-        self._progress = 0.0
-        self._finished = False
-
-    @property
-    def path(self) -> PolylinePath:
-        """Return the reference path."""
-        return self._path
-
-    @property
-    def params(self) -> PurePursuitParams:
-        """Return the current tunables."""
-        return self._params
-
-    @property
-    def progress(self) -> float:
-        """Return the arc length [m] of the last projection onto the path (0 after a reset)."""
-        return self._progress
-
-    def set_params(self, params: PurePursuitParams) -> None:
-        """
-        Use ``params`` from the next :meth:`update` on; the progress is kept.
-
-        >>> tracker = PurePursuit(PolylinePath([[0.0, 0.0], [5.0, 0.0]]), PurePursuitParams())
-        >>> tracker.set_params(PurePursuitParams(lookahead_distance=2.0))
-        >>> tracker.params.lookahead_distance
-        2.0
-
-        """
-        self._params = params
-
-    def reset(self) -> None:
-        """
-        Restart from the beginning of the path: progress 0, not finished.
-
-        >>> tracker = PurePursuit(PolylinePath([[0.0, 0.0], [5.0, 0.0]]), PurePursuitParams())
-        >>> _ = tracker.update([2.0, 0.0, 0.0])
-        >>> tracker.reset()
-        >>> tracker.progress
-        0.0
-
-        """
-        self._progress = 0.0
-        self._finished = False
 
     def update(self, pose: ArrayLike) -> PurePursuitCommand:
         """
@@ -248,25 +203,18 @@ class PurePursuit:
             If ``pose`` is not a finite (3,) vector, or the goal point coincides with the
             vehicle position (L = 0).
 
+        >>> from robotica_ctrl.mobile.path import PolylinePath
         >>> tracker = PurePursuit(PolylinePath([[0.0, 0.0], [5.0, 0.0]]), PurePursuitParams())
         >>> tracker.update([0.0, 0.5, 0.0]).curvature  # 2 (-0.5) / (0.5² + 0.5²)
         -2.0
 
         """
-        x = np.asarray(pose, dtype=np.float64)
-        if x.shape != (3,) or not np.all(np.isfinite(x)):
-            raise ValueError(f'pose must be a finite (3,) vector (x, y, theta), got {pose!r}')
+        x, projection = self._locate(pose)
         params = self._params
-        path = self._path
-        projection = path.project(x[:2], s_hint=self._progress, window=params.search_window)
-        self._progress = projection.s
-        goal = path.point_at(projection.s + params.lookahead_distance)
-        remaining = path.length - projection.s
-        end_distance = float(np.hypot(*(path.points[-1] - x[:2])))
-        if max(remaining, end_distance) <= params.goal_tolerance:
-            self._finished = True
+        goal = self._path.point_at(projection.s + params.lookahead_distance)
         if self._finished:
             return PurePursuitCommand(0.0, 0.0, 0.0, goal, projection, True)
+        remaining = self._path.length - projection.s
         gamma = _steering_curvature(goal - x[:2], float(x[2]))
         v = params.desired_linear_velocity
         if remaining < params.approach_distance:

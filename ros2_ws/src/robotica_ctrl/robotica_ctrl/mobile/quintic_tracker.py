@@ -32,7 +32,8 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from robotica_ctrl.mobile.path import PathProjection, PolylinePath
+from robotica_ctrl.mobile.path import PolylinePath
+from robotica_ctrl.mobile.tracker_base import PathTrackerBase
 from robotica_kin.angles import wrap_to_pi
 
 __all__ = [
@@ -262,7 +263,7 @@ class QuinticTrackerCommand:
             object.__setattr__(self, 'coefficients', c)
 
 
-class QuinticTracker:
+class QuinticTracker(PathTrackerBase[QuinticTrackerParams]):
     """
     Quintic-polynomial tracker of a :class:`PolylinePath` (book §9.3.2).
 
@@ -287,36 +288,13 @@ class QuinticTracker:
     """
 
     def __init__(self, path: PolylinePath, params: QuinticTrackerParams) -> None:
-        self._path = path
-        self._params = params
-        self._progress = 0.0
+        super().__init__(path, params)
         self._curvature = 0.0
-        self._finished = False
-
-    @property
-    def path(self) -> PolylinePath:
-        """Return the reference path."""
-        return self._path
-
-    @property
-    def params(self) -> QuinticTrackerParams:
-        """Return the current tunables."""
-        return self._params
-
-    @property
-    def progress(self) -> float:
-        """Return the arc length [m] of the last projection onto the path (0 after a reset)."""
-        return self._progress
-
-    def set_params(self, params: QuinticTrackerParams) -> None:
-        """Use ``params`` from the next :meth:`update` on; the state is kept."""
-        self._params = params
 
     def reset(self) -> None:
         """Restart from the beginning of the path: progress 0, curvature 0, not finished."""
-        self._progress = 0.0
+        super().reset()
         self._curvature = 0.0
-        self._finished = False
 
     def update(self, pose: ArrayLike,
                current_curvature: float | None = None) -> QuinticTrackerCommand:
@@ -354,23 +332,14 @@ class QuinticTracker:
             the goal point coincides with the vehicle.
 
         """
-        x = np.asarray(pose, dtype=np.float64)
-        if x.shape != (3,) or not np.all(np.isfinite(x)):
-            raise ValueError(f'pose must be a finite (3,) vector (x, y, theta), got {pose!r}')
         if current_curvature is not None and not math.isfinite(current_curvature):
             raise ValueError(f'current_curvature must be finite, got {current_curvature!r}')
+        x, projection = self._locate(pose)
         gamma_in = self._curvature if current_curvature is None else float(current_curvature)
         params = self._params
         path = self._path
-        projection: PathProjection = path.project(x[:2], s_hint=self._progress,
-                                                  window=params.search_window)
-        self._progress = projection.s
         s_goal = min(projection.s + params.lookahead_distance, path.length)
         goal = path.point_at(s_goal)
-        remaining = path.length - projection.s
-        end_distance = float(np.hypot(*(path.points[-1] - x[:2])))
-        if max(remaining, end_distance) <= params.goal_tolerance:
-            self._finished = True
         if self._finished:
             self._curvature = 0.0
             return QuinticTrackerCommand(0.0, 0.0, 0.0, projection.cross_track, goal, True)
