@@ -6,7 +6,8 @@ of straights and arcs (§9.2 lists where paths come from). These functions sampl
 as polylines for :class:`robotica_ctrl.mobile.path.PolylinePath`: consecutive points are at
 most ``spacing`` apart (arcs are sampled by angle, and a chord is shorter than its arc), and a
 closed shape repeats its first point exactly at the end. Frames are REP-103; closed shapes are
-traversed counter-clockwise unless stated otherwise.
+traversed counter-clockwise unless stated otherwise. :func:`unicycle_trajectory` is a
+trajectory: its points carry a third column, their time [s] (trajectory tracking, §9.4.2).
 """
 
 import math
@@ -14,7 +15,8 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-__all__ = ['circle', 'figure_eight', 'rounded_rectangle', 'straight_line']
+__all__ = ['circle', 'figure_eight', 'parabola', 'polyline', 'rounded_rectangle', 'straight_line',
+           'unicycle_trajectory']
 
 
 def straight_line(start: ArrayLike, end: ArrayLike, spacing: float = 0.05) -> NDArray[np.float64]:
@@ -164,6 +166,89 @@ def figure_eight(radius: float, spacing: float = 0.05) -> NDArray[np.float64]:
     points = np.concatenate((upper, lower[1:]))
     points[[0, len(upper) - 1, -1]] = 0.0  # the two circles meet exactly at the origin
     return points
+
+
+def polyline(points: ArrayLike, spacing: float = 0.05) -> NDArray[np.float64]:
+    """
+    Return the straight segments through the corner ``points`` (M, 2) [m], <= ``spacing`` apart.
+
+    A path with sharp corners (the tracking benchmark's turn); consecutive corners must differ.
+
+    >>> polyline([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0]], spacing=1.0)
+    array([[0., 0.],
+           [1., 0.],
+           [1., 1.]])
+
+    """
+    corners = np.asarray(points, dtype=np.float64)
+    if corners.ndim != 2 or corners.shape[1] != 2 or len(corners) < 2:
+        raise ValueError(f'points must have shape (M, 2) with M >= 2, got {corners.shape}')
+    pieces = [straight_line(a, b, spacing)[:-1] for a, b in zip(corners[:-1], corners[1:])]
+    return np.vstack([*pieces, corners[-1:]])
+
+
+def parabola(a: float, length: float, offset: float = 0.0,
+             spacing: float = 0.05) -> NDArray[np.float64]:
+    """
+    Return points (N, 2) [m] of y = offset + a x² for 0 <= x <= ``length`` [m].
+
+    ``a`` [1/m] is half the curvature at the vertex (x = 0), where the path heads along +x;
+    the x step keeps consecutive points <= ``spacing`` apart.
+
+    >>> parabola(0.5, 2.0, spacing=1.0)[-1]
+    array([2., 2.])
+
+    """
+    _check_positive(length, 'length')
+    _check_positive(spacing, 'spacing')
+    if not (math.isfinite(a) and math.isfinite(offset)):
+        raise ValueError(f'a and offset must be finite, got {a!r}, {offset!r}')
+    # |dy/dx| <= 2 |a| length, so a step dx = spacing / sqrt(1 + (2 a length)²) is short enough.
+    count = math.ceil(length * math.hypot(1.0, 2.0 * a * length) / spacing)
+    x = np.linspace(0.0, length, count + 1)
+    return np.column_stack([x, offset + a * x * x])
+
+
+def unicycle_trajectory(start: ArrayLike, segments: ArrayLike,
+                        step: float = 0.02) -> NDArray[np.float64]:
+    """
+    Return (N, 3) rows (x [m], y [m], t [s]) of a unicycle driven by piecewise-constant inputs.
+
+    The reference of trajectory tracking (book (9.59)): from ``start`` (x, y, θ) at t = 0,
+    each row (v [m/s], ω [rad/s], duration [s]) of ``segments`` drives exact arcs (straights
+    when ω = 0), sampled every ``step`` [s] (each segment ends on a sample). Speeds must be
+    > 0, so that the points are distinct. Ejemplo 9.3: start (0, 0, π/2) (the book's φ = 0),
+    segments [[0.2, 0.3, 10], [0.2, 0.2, 10], [0.1, 0.2, 10]].
+
+    >>> unicycle_trajectory([0.0, 0.0, 0.0], [[1.0, 0.0, 1.0]], step=0.5)
+    array([[0. , 0. , 0. ],
+           [0.5, 0. , 0.5],
+           [1. , 0. , 1. ]])
+
+    """
+    pose = np.asarray(start, dtype=np.float64)
+    rows = np.asarray(segments, dtype=np.float64)
+    if pose.shape != (3,) or not np.all(np.isfinite(pose)):
+        raise ValueError(f'start must be a finite (x, y, theta), got {start!r}')
+    if rows.ndim != 2 or rows.shape[1] != 3 or len(rows) == 0 or not np.all(np.isfinite(rows)):
+        raise ValueError('segments must be rows of finite (v, omega, duration)')
+    if np.any(rows[:, 0] <= 0.0) or np.any(rows[:, 2] <= 0.0):
+        raise ValueError('segment speeds and durations must be > 0')
+    _check_positive(step, 'step')
+    x, y, theta = pose
+    out = [[x, y, 0.0]]
+    t0 = 0.0
+    for v, omega, duration in rows:
+        tau = np.linspace(0.0, duration, max(math.ceil(duration / step - 1e-9), 1) + 1)[1:]
+        heading = theta + omega * tau
+        if omega == 0.0:
+            xs, ys = x + v * tau * math.cos(theta), y + v * tau * math.sin(theta)
+        else:
+            xs = x + v / omega * (np.sin(heading) - math.sin(theta))
+            ys = y - v / omega * (np.cos(heading) - math.cos(theta))
+        out.extend(np.column_stack([xs, ys, t0 + tau]).tolist())
+        x, y, theta, t0 = float(xs[-1]), float(ys[-1]), float(heading[-1]), t0 + duration
+    return np.array(out)
 
 
 def _arc(center: NDArray[np.float64], radius: float, start_angle: float, sweep: float,

@@ -10,12 +10,15 @@ import math
 
 import numpy as np
 from robotica_ctrl import path_shapes
+from robotica_ctrl.mobile.tracking_laws import LAW_PARAMETERS
 from robotica_kin.mobile.vehicles import STEERED_TYPES
 from robotica_kin.robots import puma560, two_link_arm
 from robotica_sim.gps_model import gps_preset
 from robotica_sim.scenario import Scenario, ScenarioError
 
-PATH_SHAPES = ('straight_line', 'circle', 'rounded_rectangle', 'figure_eight')
+PATH_SHAPES = ('straight_line', 'circle', 'rounded_rectangle', 'figure_eight', 'polyline',
+               'parabola', 'unicycle_trajectory')
+TRACKER_NODE_KEYS = ('pose_source', 'max_cross_track')   # tracker: keys that are not gains
 STATUS_TOPIC = '/simulator/status'
 TRACKING_ERROR_TOPIC = '/path_tracker/tracking_error'
 CONTROLLER_STATE_TOPIC = '/joint_controller/controller_state'
@@ -40,18 +43,29 @@ class NodeSpec:
     remappings: dict = field(default_factory=dict)
 
 
-def path_points(scenario: Scenario) -> list[list[float]]:
-    """Return the scenario's reference path as a list of [x, y] points [m]."""
+def _path_samples(scenario: Scenario) -> np.ndarray:
+    """Return the scenario's path as (N, 2) points [m], or (N, 3) with times [s] (trajectory)."""
     spec = scenario.path
     where = scenario.source or scenario.name
     if spec.shape not in PATH_SHAPES:
         raise ScenarioError(f'{where}: path.shape must be one of {PATH_SHAPES}, '
                             f'got {spec.shape!r}')
     try:
-        points = getattr(path_shapes, spec.shape)(**spec.args)
+        return np.asarray(getattr(path_shapes, spec.shape)(**spec.args), dtype=float)
     except (TypeError, ValueError) as err:
         raise ScenarioError(f'{where}: path ({spec.shape}): {err}') from None
-    return [[round(float(x), 9), round(float(y), 9)] for x, y in points]   # [m], to 1 nm
+
+
+def path_points(scenario: Scenario) -> list[list[float]]:
+    """Return the scenario's reference path as a list of [x, y] points [m]."""
+    return [[round(float(x), 9), round(float(y), 9)]   # [m], to 1 nm
+            for x, y in _path_samples(scenario)[:, :2]]
+
+
+def path_times(scenario: Scenario) -> list[float] | None:
+    """Return the time [s] of each path point when the path is a trajectory, else None."""
+    samples = _path_samples(scenario)
+    return [float(t) for t in samples[:, 2]] if samples.shape[1] == 3 else None
 
 
 def recorded_topics(scenario: Scenario) -> tuple[str, ...]:
@@ -194,16 +208,39 @@ def _plan_mobile(scenario: Scenario) -> list[NodeSpec]:
     x0, y0, theta0 = robot.initial_pose
     pose = {'initial_pose.x': x0, 'initial_pose.y': y0, 'initial_pose.theta': theta0}
     points = path_points(scenario)
-    gains = {}
+    times = path_times(scenario)
+    law = scenario.tracker.law
+    if law not in (*LAW_PARAMETERS, 'open_loop'):
+        raise ScenarioError(f'{where}: tracker.law must be one of '
+                            f'{(*LAW_PARAMETERS, "open_loop")}, got {law!r}')
+    specs = LAW_PARAMETERS.get(law, {})
+    known = set(specs) if specs else {'times', 'linear', 'angular'}   # open_loop's profile
+    unknown = set(scenario.tracker.gains) - known - set(TRACKER_NODE_KEYS)
+    if unknown:
+        raise ScenarioError(f'{where}: tracker.{sorted(unknown)[0]} is not a gain of {law}; '
+                            f'its gains: {sorted(specs)}')
+    gains: dict = {}
     for key, value in scenario.tracker.gains.items():
-        numbers = _numbers(value, f'{where}: tracker.{key}')   # open_loop takes lists
-        gains[f'{scenario.tracker.law}.{key}'] = numbers if isinstance(value, list) \
-            else numbers[0]
+        if key in TRACKER_NODE_KEYS:
+            gains[key] = value if isinstance(value, str) else \
+                _numbers(value, f'{where}: tracker.{key}')[0]
+        elif isinstance(value, str) and specs and specs[key].choices:
+            gains[f'{law}.{key}'] = value                        # e.g. frenet law: nonlinear
+        else:
+            numbers = _numbers(value, f'{where}: tracker.{key}')   # open_loop takes lists
+            if specs and isinstance(specs[key].default, int):
+                if numbers[0] != int(numbers[0]):
+                    raise ScenarioError(f'{where}: tracker.{key} must be an integer, got '
+                                        f'{value!r}')
+                gains[f'{law}.{key}'] = int(numbers[0])
+            else:
+                gains[f'{law}.{key}'] = numbers if isinstance(value, list) else numbers[0]
     odometry = scenario.odometry
     steered = robot.type in STEERED_TYPES
     return [
         NodeSpec('robotica_sim', 'path_publisher', 'path_publisher', {
             'x': [p[0] for p in points], 'y': [p[1] for p in points],
+            **({} if times is None else {'t': times}),
             'frame_id': scenario.path.frame_id}),
         *_mobile_sensors(scenario),
         NodeSpec('robotica_sim', 'odometry', 'odometry', {

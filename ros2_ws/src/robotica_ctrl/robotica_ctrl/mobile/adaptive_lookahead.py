@@ -225,6 +225,11 @@ class AdaptivePurePursuit:
         """Return the look-ahead L [m] used by the last update."""
         return self._tracker.params.lookahead_distance
 
+    def set_params(self, params: PurePursuitParams, rule: LookaheadRule) -> None:
+        """Use ``params`` and ``rule`` from the next :meth:`update` on; the progress is kept."""
+        self._tracker.set_params(params)
+        self._rule = rule
+
     def reset(self) -> None:
         """Restart the wrapped tracker from the beginning of the path."""
         self._tracker.reset()

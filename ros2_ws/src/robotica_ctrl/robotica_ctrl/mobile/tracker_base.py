@@ -68,6 +68,7 @@ class PathTrackerBase(Generic[ParamsT]):
         self._params = params
         self._progress = 0.0
         self._finished = False
+        self._projection: PathProjection | None = None
 
     @property
     def path(self) -> PolylinePath:
@@ -89,6 +90,11 @@ class PathTrackerBase(Generic[ParamsT]):
         """Return whether the end of the path has been reached (until :meth:`reset`)."""
         return self._finished
 
+    @property
+    def last_projection(self) -> PathProjection | None:
+        """Return the projection of the last pose onto the path (None before any update)."""
+        return self._projection
+
     def set_params(self, params: ParamsT) -> None:
         """Use ``params`` from the next update on; the progress is kept."""
         self._params = params
@@ -97,6 +103,7 @@ class PathTrackerBase(Generic[ParamsT]):
         """Restart from the beginning of the path: progress 0, not finished."""
         self._progress = 0.0
         self._finished = False
+        self._projection = None
 
     def _locate(self, pose: ArrayLike) -> tuple[NDArray[np.float64], PathProjection]:
         """
@@ -108,8 +115,9 @@ class PathTrackerBase(Generic[ParamsT]):
         path, params = self._path, self._params
         projection = path.project(x[:2], s_hint=self._progress, window=params.search_window)
         self._progress = projection.s
-        end = path.points[-1]
-        end_distance = math.hypot(float(end[0] - x[0]), float(end[1] - x[1]))
+        self._projection = projection
+        (end_x, end_y), (x_0, y_0) = path.points[-1].tolist(), x[:2].tolist()
+        end_distance = math.hypot(end_x - x_0, end_y - y_0)
         if max(path.length - projection.s, end_distance) <= params.goal_tolerance:
             self._finished = True
         return x, projection

@@ -1,71 +1,67 @@
 """
-Path tracker node: follows a ``nav_msgs/Path`` from the pose on ``odom``; publishes ``cmd_vel``.
+Path tracker node: follows a ``nav_msgs/Path`` with a law of book ch. 9 chosen by ``law``.
 
-The control law is chosen by ``law`` (book chapter 9; ``pure_pursuit``, §9.3.1, for now) and
-lives in :mod:`robotica_ctrl.mobile`; ``open_loop`` plays the profile ``open_loop.times``,
-``open_loop.linear`` and ``open_loop.angular`` against the pose's time stamp instead, without
-feedback or path (the book's Simulink examples, Ej. 4.8 and 4.9). Topics: ``odom``
-(nav_msgs/Odometry) and ``~/path`` (nav_msgs/Path, transient-local) in; ``cmd_vel``
-(geometry_msgs/Twist) and ``~/tracking_error`` (robotica_msgs/TrackingError, stamped with the
-pose it was computed from) out. With
-``command_type`` = ``steering`` (tricycle, bicycle, Ackermann) the command goes out on
+Laws (:mod:`robotica_ctrl.mobile.tracking_laws`): ``pure_pursuit`` (§9.3.1),
+``adaptive_pure_pursuit`` (look-ahead by speed, curvature or error), ``quintic`` (§9.3.2),
+``trajectory_tracking`` (Canudas de Wit, §9.4.2: linear, scheduled or nonlinear), ``frenet``
+(§9.4.3: linear or nonlinear) and ``gpc`` (§9.5); each reads its gains from the parameters
+``<law>.<gain>`` (descriptions, units and ranges with ``ros2 param describe``), which can be
+changed at run time (an invalid value is refused with the reason). ``open_loop`` plays the
+profile ``open_loop.times``, ``open_loop.linear`` and ``open_loop.angular`` against the pose's
+time stamp instead, without feedback or path (the book's Simulink examples, Ej. 4.8 and 4.9).
+
+Topics: the pose in, from ``odom`` (nav_msgs/Odometry, the estimate) or, with ``pose_source``
+= ``ground_truth``, from ``ground_truth/odom`` (the simulator's truth); ``~/path``
+(nav_msgs/Path, transient-local) in: when its poses carry strictly increasing stamps they are
+the timing of a trajectory (trajectory tracking; otherwise it moves along the path at
+``trajectory_tracking.reference_speed``). Out: ``cmd_vel`` (geometry_msgs/Twist) and
+``~/tracking_error`` (robotica_msgs/TrackingError, stamped with the pose it was computed from).
+With ``command_type`` = ``steering`` (tricycle, bicycle, Ackermann) the command goes out on
 ``vehicle_command`` (robotica_msgs/VehicleCommand) instead: the law's speed v and the steering
 angle of its curvature, α = atan(l ω / v) (book (4.119), (4.121)), l = ``wheelbase``.
 
 With ``control_rate`` = 0 the law runs once per pose message (what a lockstep simulation needs:
 every step is answered exactly once); with ``control_rate`` > 0 it runs on a timer from the
-newest pose and brakes when that pose is older than ``pose_timeout``. Gains can be changed at
-run time; an invalid value is refused with the reason. Without a path, with a path in another
-frame than the pose, or with a non-finite pose, the node commands a stop and says why.
+newest pose and brakes when that pose is older than ``pose_timeout``. The node commands a stop
+and says why when: there is no path yet, the path is finished, the robot is farther than
+``max_cross_track`` from the path (lost), the pose is stale, not finite or in another frame
+than the path (the ground truth's world frame is taken as the path's: the simulator starts the
+odometry frame at the true pose).
 """
-import dataclasses
 import math
 
 from geometry_msgs.msg import Point, Twist
 from nav_msgs.msg import Odometry, Path
+import numpy as np
 from rcl_interfaces.msg import SetParametersResult
 from rclpy.experimental import EventsExecutor
 from rclpy.node import Node
 from robotica_ctrl.mobile.open_loop import OpenLoopProfile
 from robotica_ctrl.mobile.path import PolylinePath
-from robotica_ctrl.mobile.pure_pursuit import PurePursuit, PurePursuitParams
+from robotica_ctrl.mobile.tracking_laws import LAW_PARAMETERS, LAWS, make_law, TrackingLaw
 from robotica_kin.nodes.convert import path_points, pose2d_from_odometry, stamp_to_seconds
 from robotica_kin.nodes.entry_point import run_node
 from robotica_kin.nodes.parameters import declare
 from robotica_kin.nodes.qos import COMMAND_PUB_QOS, LATCHED_QOS, STREAM_PUB_QOS, STREAM_SUB_QOS
 from robotica_msgs.msg import TrackingError, VehicleCommand
 
-LAWS = ('pure_pursuit', 'open_loop')
+NODE_LAWS = (*LAWS, 'open_loop')
 COMMAND_TYPES = ('twist', 'steering')
-GAIN_DESCRIPTIONS = {
-    'lookahead_distance': ('Look-ahead arc distance L [m], book (9.7)', 0.01, 100.0),
-    'desired_linear_velocity': ('Cruise speed [m/s]', 1e-3, 100.0),
-    'max_angular_velocity': ('Yaw-rate limit [rad/s]; speed is reduced to keep the curvature',
-                             1e-3, 100.0),
-    'goal_tolerance': ('Distance to the path end at which the path is finished [m]',
-                       1e-4, 100.0),
-    'approach_distance': ('Distance to the path end over which the speed ramps down [m]',
-                          1e-3, 1000.0),
-    'min_approach_velocity': ('Lowest speed while approaching the end [m/s]', 1e-4, 100.0),
-    'search_window': ('Window of the closest-point search around the progress [m]',
-                      1e-3, 1000.0),
-}
+POSE_SOURCES = {'odom': 'odom', 'ground_truth': 'ground_truth/odom'}
 
 
 class PathTrackerNode(Node):
-    """ROS shell around :class:`robotica_ctrl.mobile.pure_pursuit.PurePursuit`."""
+    """ROS shell around the tracking laws of :mod:`robotica_ctrl.mobile.tracking_laws`."""
 
     def __init__(self) -> None:
         super().__init__('path_tracker')
-        self._law = declare(self, 'law', 'pure_pursuit', f'Tracking law: one of {LAWS}',
-                            read_only=True)
-        if self._law not in LAWS:
-            raise ValueError(f'law must be one of {LAWS}, got {self._law!r}')
-        defaults = PurePursuitParams()
-        self._params = PurePursuitParams(**{
-            name: declare(self, 'pure_pursuit.' + name, float(getattr(defaults, name)),
-                          description, low=low, high=high)
-            for name, (description, low, high) in GAIN_DESCRIPTIONS.items()})
+        self._law_name = declare(self, 'law', 'pure_pursuit', f'Tracking law: one of '
+                                 f'{NODE_LAWS}', read_only=True)
+        if self._law_name not in NODE_LAWS:
+            raise ValueError(f'law must be one of {NODE_LAWS}, got {self._law_name!r}')
+        self._gains = self._declare_gains(self._law_name)
+        if self._law_name in LAWS:   # refuse bad gains at start-up, not at the first path
+            make_law(self._law_name, PolylinePath([[0.0, 0.0], [1.0, 0.0]]), self._gains)
         self._command_type = declare(self, 'command_type', 'twist',
                                      f'Command: one of {COMMAND_TYPES} (cmd_vel Twist, or '
                                      'vehicle_command VehicleCommand for steered vehicles)',
@@ -76,6 +72,18 @@ class PathTrackerNode(Node):
         self._wheelbase = declare(self, 'wheelbase', 0.5,
                                   'Wheelbase l [m] of a steered vehicle (command_type steering)',
                                   low=1e-3, high=100.0, read_only=True)
+        pose_source = declare(self, 'pose_source', 'odom',
+                              f'Pose the law reads: one of {tuple(POSE_SOURCES)} (odom: the '
+                              'estimate; ground_truth: the truth of the simulator, '
+                              'ground_truth/odom)',
+                              read_only=True)
+        if pose_source not in POSE_SOURCES:
+            raise ValueError(f'pose_source must be one of {tuple(POSE_SOURCES)}, got '
+                             f'{pose_source!r}')
+        self._ground_truth = pose_source == 'ground_truth'
+        self._max_cross_track = declare(self, 'max_cross_track', 5.0,
+                                        'Farther than this from the path [m] the robot is '
+                                        'lost: stop', low=1e-3, high=1e6)
         self._profile = OpenLoopProfile(
             declare(self, 'open_loop.times', [0.0], 'open_loop: times of the profile rows [s]',
                     read_only=True),
@@ -92,10 +100,10 @@ class PathTrackerNode(Node):
         self.add_on_set_parameters_callback(self._validate_parameters)
         self.add_post_set_parameters_callback(self._apply_parameters)
 
-        self._tracker = None
+        self._law: TrackingLaw | None = None
         self._path_frame = ''
         self._pose_msg = None
-        self._reported = set()
+        self._reported: set[str] = set()
         if self._command_type == 'twist':
             self._cmd_pub = self.create_publisher(Twist, 'cmd_vel', COMMAND_PUB_QOS)
         else:
@@ -104,41 +112,79 @@ class PathTrackerNode(Node):
         self._error_pub = self.create_publisher(TrackingError, '~/tracking_error',
                                                 STREAM_PUB_QOS)
         self.create_subscription(Path, '~/path', self._on_path, LATCHED_QOS)
-        self.create_subscription(Odometry, 'odom', self._on_odom, STREAM_SUB_QOS)
+        self.create_subscription(Odometry, POSE_SOURCES[pose_source], self._on_odom,
+                                 STREAM_SUB_QOS)
         if self._control_rate > 0.0:
             self.create_timer(1.0 / self._control_rate, self._on_timer)
+        self.get_logger().info(f'law {self._law_name}, pose from '
+                               f'{POSE_SOURCES[pose_source]}, command {self._command_type}')
 
     # -- parameters --------------------------------------------------------------------------
-    def _candidate(self, parameters) -> PurePursuitParams:
-        changes = {p.name.removeprefix('pure_pursuit.'): p.value for p in parameters
-                   if p.name.startswith('pure_pursuit.')}
-        return dataclasses.replace(self._params, **changes)
+    def _declare_gains(self, law: str) -> dict:
+        """Declare the parameters ``<law>.<gain>`` of the chosen law; return their values."""
+        gains = {}
+        for name, spec in LAW_PARAMETERS.get(law, {}).items():
+            description = spec.description
+            if spec.choices:
+                description += f': one of {spec.choices}'
+            gains[name] = declare(self, f'{law}.{name}', spec.default, description,
+                                  low=spec.low, high=spec.high)
+            if spec.choices and gains[name] not in spec.choices:
+                raise ValueError(f'{law}.{name} must be one of {spec.choices}, got '
+                                 f'{gains[name]!r}')
+        return gains
+
+    def _changes(self, parameters) -> dict:
+        prefix = self._law_name + '.'
+        return {p.name.removeprefix(prefix): p.value for p in parameters
+                if p.name.startswith(prefix) and self._law_name in LAWS}
 
     def _validate_parameters(self, parameters) -> SetParametersResult:
-        try:
-            self._candidate(parameters)
-        except (ValueError, TypeError) as err:
-            return SetParametersResult(successful=False, reason=str(err))
+        changes = self._changes(parameters)
+        if changes:
+            specs = LAW_PARAMETERS[self._law_name]
+            for name, value in changes.items():
+                if specs[name].choices and value not in specs[name].choices:
+                    return SetParametersResult(successful=False, reason=(
+                        f'{self._law_name}.{name} must be one of {specs[name].choices}, got '
+                        f'{value!r}'))
+            try:   # the law's own checks, on a throw-away copy
+                make_law(self._law_name, PolylinePath([[0.0, 0.0], [1.0, 0.0]]),
+                         {**self._gains, **changes})
+            except (ValueError, TypeError) as err:
+                return SetParametersResult(successful=False, reason=str(err))
         return SetParametersResult(successful=True)
 
     def _apply_parameters(self, parameters) -> None:
-        self._params = self._candidate(parameters)
-        if self._tracker is not None:
-            self._tracker.set_params(self._params)
+        changes = self._changes(parameters)
+        if changes:
+            self._gains.update(changes)
+            if self._law is not None:
+                self._law.set_gains(changes)
+            self.get_logger().info(f'gains changed: {changes}')
 
     # -- inputs ------------------------------------------------------------------------------
     def _on_path(self, msg: Path) -> None:
+        if self._law_name not in LAWS:
+            return
+        points = path_points(msg)
+        times = np.array([stamp_to_seconds(p.header.stamp) for p in msg.poses])
+        timed = times.size >= 2 and bool(np.all(np.diff(times) > 0.0))
         try:
-            path = PolylinePath(path_points(msg))
+            path = PolylinePath(points)
+            stations = np.concatenate(([0.0], np.cumsum(np.hypot(*np.diff(points, axis=0).T))))
+            law = make_law(self._law_name, path, self._gains, times if timed else None,
+                           stations if timed else None)
         except ValueError as err:
             self.get_logger().error(f'path refused: {err}')
-            self._tracker = None
+            self._law = None
             return
-        self._tracker = PurePursuit(path, self._params)
+        self._law = law
         self._path_frame = msg.header.frame_id
         self._reported.clear()
+        timing = f', timed from {times[0]:.2f} s to {times[-1]:.2f} s' if timed else ''
         self.get_logger().info(f'following a path of {path.length:.2f} m in frame '
-                               f'{self._path_frame!r}')
+                               f'{self._path_frame!r}{timing}')
 
     def _on_odom(self, msg: Odometry) -> None:
         self._pose_msg = msg
@@ -149,15 +195,22 @@ class PathTrackerNode(Node):
         msg = self._pose_msg
         now = self.get_clock().now().nanoseconds * 1e-9
         if msg is None or now - stamp_to_seconds(msg.header.stamp) > self._pose_timeout:
-            self._stop('no pose newer than pose_timeout on odom: stopping')
+            self._stop('no pose newer than pose_timeout: stopping')
             return
         self._control(msg)
 
     # -- control -----------------------------------------------------------------------------
+    def _report(self, key: str, text: str, warn: bool = True) -> None:
+        """Log ``text`` once until the next path."""
+        if key not in self._reported:
+            self._reported.add(key)
+            if warn:   # one call site per severity: rclpy refuses a site that changes it
+                self.get_logger().warn(text)
+            else:
+                self.get_logger().info(text)
+
     def _stop(self, reason: str) -> None:
-        if reason not in self._reported:
-            self._reported.add(reason)
-            self.get_logger().warn(reason)
+        self._report(reason, reason)
         self._publish_command(0.0, 0.0)
 
     def _publish_command(self, linear: float, angular: float) -> None:
@@ -173,33 +226,39 @@ class PathTrackerNode(Node):
         self._cmd_pub.publish(VehicleCommand(speed=linear, steering_angle=steering))
 
     def _control(self, msg: Odometry) -> None:
-        if self._law == 'open_loop':
-            self._publish_command(*self._profile.command(stamp_to_seconds(msg.header.stamp)))
+        time = stamp_to_seconds(msg.header.stamp)
+        if self._law_name == 'open_loop':
+            self._publish_command(*self._profile.command(time))
             return
-        if self._tracker is None:
+        if self._law is None:
             self._stop('no path received on ~/path yet: holding still')
             return
-        if msg.header.frame_id != self._path_frame:
+        if self._ground_truth and msg.header.frame_id != self._path_frame:
+            self._report('frames', f'ground truth in frame {msg.header.frame_id!r} taken as the '
+                         f'path frame {self._path_frame!r} (the simulator starts the odometry '
+                         'at the true pose)', warn=False)
+        elif msg.header.frame_id != self._path_frame:
             self._stop(f'pose frame {msg.header.frame_id!r} differs from path frame '
                        f'{self._path_frame!r}: stopping')
             return
         pose = pose2d_from_odometry(msg)
+        speed = msg.twist.twist.linear.x
         try:
-            command = self._tracker.update(pose)
+            output = self._law.update(pose, time, speed if math.isfinite(speed) else None)
         except ValueError as err:
             self._stop(f'pose refused ({err}): stopping')
             return
-        self._publish_command(command.linear, command.angular)
-        if command.finished and 'finished' not in self._reported:
-            self._reported.add('finished')
-            self.get_logger().info('path finished: stopped at its end')
-        projection = command.projection
-        error = TrackingError(cross_track=float(projection.cross_track),
-                              heading=math.remainder(pose[2] - projection.tangent_heading,
-                                                     math.tau),
-                              along_track=float(projection.along_track),
-                              target_point=Point(x=float(command.goal_point[0]),
-                                                 y=float(command.goal_point[1])))
+        if abs(output.cross_track) > self._max_cross_track:
+            self._stop(f'path lost: {abs(output.cross_track):.2f} m from it, more than '
+                       f'max_cross_track ({self._max_cross_track} m): stopping')
+        else:
+            self._publish_command(output.linear, output.angular)
+        if output.finished:
+            self._report('finished', 'path finished: stopped at its end', warn=False)
+        error = TrackingError(cross_track=output.cross_track, heading=output.heading_error,
+                              along_track=output.along_track,
+                              target_point=Point(x=float(output.target_point[0]),
+                                                 y=float(output.target_point[1])))
         error.header = msg.header
         self._error_pub.publish(error)
 

@@ -129,3 +129,32 @@ def test_bad_open_loop_profile_is_refused(start_node, read_output):
                       '-p', 'open_loop.angular:=[1.0, 1.0]')
     assert proc.wait(timeout=30) == 2
     assert 'times must increase strictly' in read_output(proc)
+
+
+def test_frenet_law_on_ground_truth_and_lost_path_stop(start_node, ros_node, spin, publish,
+                                                       read_output):
+    # Frenet linear law (9.93) with k1 = 1, k2 = 2, v = 0.5: u = -k1 v d = -0.25 at d = 0.5 m.
+    node, executor = ros_node
+    proc = start_node('robotica_ctrl', 'path_tracker', '-r', '/path_tracker/path:=/path',
+                      '-p', 'law:=frenet', '-p', 'pose_source:=ground_truth',
+                      '-p', 'frenet.k1:=1.0', '-p', 'frenet.k2:=2.0',
+                      '-p', 'max_cross_track:=1.0')
+    cmds, errors = [], []
+    node.create_subscription(Twist, 'cmd_vel', cmds.append, QOS)
+    node.create_subscription(TrackingError, '/path_tracker/tracking_error', errors.append, QOS)
+    truth = node.create_publisher(Odometry, 'ground_truth/odom', QOS)
+    path = node.create_publisher(Path, '/path', LATCHED)
+    assert spin(executor, lambda: truth.get_subscription_count() > 0 and
+                path.get_subscription_count() > 0)
+    path.publish(_straight_path())
+    assert publish(executor, truth, _odom(0.0, 0.5, 0.0, frame='map'), lambda: errors)
+    assert errors[-1].cross_track == pytest.approx(0.5, abs=1e-9)
+    assert spin(executor, lambda: cmds and cmds[-1].linear.x != 0.0)
+    assert cmds[-1].linear.x == pytest.approx(0.5)
+    assert cmds[-1].angular.z == pytest.approx(-0.25, abs=0.02)   # c(s) = 0 on a line
+    n = len(cmds)
+    assert publish(executor, truth, _odom(1.0, 1.5, 0.0, frame='map'),
+                   lambda: len(cmds) > n and cmds[-1].linear.x == 0.0)
+    text = read_output(proc)
+    assert 'path lost' in text and 'taken as the path frame' in text
+    assert proc.poll() is None

@@ -94,18 +94,29 @@ def path_points(msg: Path) -> NDArray[np.float64]:
                     dtype=float).reshape(-1, 2)
 
 
-def path_message(points: ArrayLike, frame_id: str, t: float = 0.0) -> Path:
-    """Build a ``nav_msgs/Path`` through (N, 2) ``points`` [m], each pose facing the next point."""
+def path_message(points: ArrayLike, frame_id: str, t: float = 0.0,
+                 times: ArrayLike | None = None) -> Path:
+    """
+    Build a ``nav_msgs/Path`` through (N, 2) ``points`` [m], each pose facing the next point.
+
+    The header is stamped ``t`` [s]; each pose is stamped too, with its time in ``times`` (N,)
+    [s] when the path is a trajectory, else ``t``.
+    """
     pts = np.asarray(points, dtype=float).reshape(-1, 2)
+    stamps = np.full(len(pts), float(t)) if times is None else np.asarray(times, dtype=float)
+    if stamps.shape != (len(pts),):
+        raise ValueError(f'times must have one value per point ({len(pts)}), got shape '
+                         f'{stamps.shape}')
     steps = np.diff(pts, axis=0)
     headings = np.arctan2(steps[:, 1], steps[:, 0]) if len(steps) else np.zeros(0)
     headings = np.append(headings, headings[-1] if len(headings) else 0.0)
     msg = Path()
     msg.header.stamp = seconds_to_stamp(t)
     msg.header.frame_id = frame_id
-    for (x, y), yaw in zip(pts, headings):
+    for (x, y), yaw, stamp in zip(pts, headings, stamps):
         pose = PoseStamped()
-        pose.header = msg.header
+        pose.header.stamp = seconds_to_stamp(float(stamp))
+        pose.header.frame_id = frame_id
         pose.pose.position.x = float(x)
         pose.pose.position.y = float(y)
         pose.pose.orientation = yaw_to_quaternion(float(yaw))
