@@ -7,35 +7,48 @@ the pure core, the DDS round trip that bounds a lockstep loop, and the full ROS 
 ``ikine`` of the PUMA 560 and the planar 3R per call and batched, next to a plain NumPy
 baseline (the product of Craig's link matrices, and HEMERO's pseudo-inverse ``ikine``) measured
 in the same run; see
-:mod:`robotica_sim.kinematics_benchmark`.
+:mod:`robotica_sim.kinematics_benchmark`. ``robotica bench tracking`` runs every tracking law
+on the differential, tricycle and Ackermann vehicles along four paths, on the true pose and on
+the EKF's (encoders, compass, DGPS), and reports cross-track, heading, settling, control effort
+and the time per ``update`` call; see :mod:`robotica_sim.tracking_benchmark`.
 """
 import argparse
 import dataclasses
 import json
+import math
 import sys
+import time
 
+from robotica_ctrl.mobile.tracking_laws import LAWS
 from robotica_sim.arm_benchmark import core_benchmark, loop_benchmark, round_trip_benchmark
 from robotica_sim.kinematics_benchmark import BenchmarkRow, run_kinematics_benchmark
 from robotica_sim.measurement_row import MeasurementRow
 from robotica_sim.mobile_benchmark import mobile_core_benchmark
+from robotica_sim.tracking_benchmark import (format_tracking_table, PATHS, plot_tracking,
+                                             POSE_SOURCES, tracking_benchmark, VEHICLES)
 
-HELP = ('measure the speed of the kinematics, the arm loop or the mobile loop '
-        '(robotica bench kin|arm|mobile)')
+HELP = ('measure the speed of the kinematics, the arm loop or the mobile loop, or the '
+        'tracking laws (robotica bench kin|arm|mobile|tracking)')
 EPILOG = """examples:
   robotica bench kin                       1000 configurations per robot, Markdown table
   robotica bench kin --count 200 --json    quicker, machine-readable
   robotica bench arm                       core, DDS round trip and ROS loop of the PUMA 560
   robotica bench arm --loop-duration 0     without the (slow) full ROS loop
   robotica bench mobile                    core and ROS loop of the figure eight, all sensors
+  robotica bench tracking --plots docs/tracking
+                                           every law x vehicle x path x pose source (about
+                                           2 min on 2 cores), table and PNG figures
+  robotica bench tracking --laws pure_pursuit gpc --vehicles ackermann --poses ground_truth
 """
-SUITES = ('kin', 'arm', 'mobile')
+SUITES = ('kin', 'arm', 'mobile', 'tracking')
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Add the arguments of ``robotica bench``."""
     parser.add_argument('suite', choices=SUITES,
                         help='what to measure: kin = kinematics, arm = the manipulator loop, '
-                        'mobile = the vehicle loop with every sensor and the EKF')
+                        'mobile = the vehicle loop with every sensor and the EKF, '
+                        'tracking = the path-tracking laws on three vehicles')
     parser.add_argument('--count', type=int, default=1000,
                         help='kin: random configurations per robot; arm: simulated steps of '
                         'the core and DDS round trips (default 1000; arm: at least 5000 steps '
@@ -45,7 +58,22 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         '(default 5 for arm, 60 for mobile)', default=None)
     parser.add_argument('--baseline-ik-count', type=int, default=100,
                         help='poses given to the slow baseline ikine (default 100)')
-    parser.add_argument('--seed', type=int, default=0, help='seed of the configurations')
+    parser.add_argument('--seed', type=int, default=0,
+                        help='kin: seed of the configurations; tracking: seed of the sensor '
+                        'noise (default 0)')
+    parser.add_argument('--laws', nargs='+', choices=LAWS, default=list(LAWS),
+                        metavar='LAW', help=f'tracking: laws to run, of {", ".join(LAWS)}')
+    parser.add_argument('--vehicles', nargs='+', choices=VEHICLES, default=list(VEHICLES),
+                        metavar='VEHICLE',
+                        help=f'tracking: vehicles to run, of {", ".join(VEHICLES)}')
+    parser.add_argument('--paths', nargs='+', choices=PATHS, default=list(PATHS),
+                        metavar='PATH', help=f'tracking: paths to run, of {", ".join(PATHS)}')
+    parser.add_argument('--poses', nargs='+', choices=POSE_SOURCES, default=list(POSE_SOURCES),
+                        metavar='POSE', help='tracking: pose given to the laws, of '
+                        f'{", ".join(POSE_SOURCES)} (the simulated truth, or the EKF fusing '
+                        'encoders, compass and DGPS)')
+    parser.add_argument('--plots', metavar='DIR',
+                        help='tracking: also write the PNG figures into DIR (created)')
     parser.add_argument('--json', action='store_true', help='print JSON instead of a table')
     parser.add_argument('--quiet', action='store_true', help='no progress on stderr')
 
@@ -77,6 +105,8 @@ def main(args: argparse.Namespace) -> int:
         return _arm(args, progress)
     if args.suite == 'mobile':
         return _mobile(args, progress)
+    if args.suite == 'tracking':
+        return _tracking(args, progress)
     rows = run_kinematics_benchmark(args.count, args.baseline_ik_count, args.seed, progress)
     if args.json:
         print(json.dumps([dataclasses.asdict(row) for row in rows], indent=2))
@@ -127,4 +157,21 @@ def _print_rows(args: argparse.Namespace, rows: list[MeasurementRow]) -> int:
         lines = ['| what | value | how |', '|---|---:|---|']
         lines += [f'| {row.what} | {row.value:.1f} {row.unit} | {row.detail} |' for row in rows]
         print('\n'.join(lines))
+    return 0
+
+
+def _tracking(args: argparse.Namespace, progress) -> int:
+    start = time.perf_counter()
+    results = tracking_benchmark(args.laws, args.vehicles, args.paths, args.poses, args.seed,
+                                 progress)
+    progress(f'tracking: {len(results)} runs in {time.perf_counter() - start:.0f} s')
+    if args.plots:
+        progress(f'tracking: figures into {args.plots}')
+        plot_tracking(results, args.plots)
+    if args.json:   # a run that never settles has settling_distance null
+        rows = [{name: None if isinstance(value, float) and not math.isfinite(value) else value
+                 for name, value in result.metrics().items()} for result in results]
+        print(json.dumps(rows, indent=2))
+    else:
+        print(format_tracking_table(results))
     return 0
