@@ -244,3 +244,97 @@ def test_projection_lies_on_path_and_is_closest(vertices, query):
                                       for a, b in segments) + 1e-9
     assert math.hypot(projection.cross_track, projection.along_track) == pytest.approx(
         projection.distance, abs=1e-9)
+
+
+def distance_to_piece(q, a, b):
+    """Return the distance from q to segment ab, which may be a point (no division by 0)."""
+    ab = (b[0] - a[0], b[1] - a[1])
+    ab_sq = ab[0] ** 2 + ab[1] ** 2
+    if ab_sq == 0.0:
+        return math.dist(q, a)
+    t = min(max(((q[0] - a[0]) * ab[0] + (q[1] - a[1]) * ab[1]) / ab_sq, 0.0), 1.0)
+    return math.dist(q, (a[0] + t * ab[0], a[1] + t * ab[1]))
+
+
+def brute_force_window_distance(vertices, query, lo, hi):
+    """
+    Return the distance from ``query`` to the part of the polyline with s in [lo, hi].
+
+    Written independently of PolylinePath: arc lengths summed with math.dist, every segment
+    cut to the window by linear interpolation and measured with distance_to_segment.
+    """
+    best = math.inf
+    s = 0.0
+    for a, b in zip(vertices, vertices[1:]):
+        length = math.dist(a, b)
+        start, end = max(lo, s), min(hi, s + length)
+        if length > 0.0 and start <= end + 1e-12:
+            f0 = min(max((start - s) / length, 0.0), 1.0)
+            f1 = min(max((end - s) / length, f0), 1.0)
+            cut_a = [a[0] + f0 * (b[0] - a[0]), a[1] + f0 * (b[1] - a[1])]
+            cut_b = [a[0] + f1 * (b[0] - a[0]), a[1] + f1 * (b[1] - a[1])]
+            best = min(best, distance_to_piece(query, cut_a, cut_b))
+        s += length
+    return best
+
+
+def check_windowed_projection(path, vertices, query, s_hint, window):
+    """Assert that the windowed projection matches the brute force over every segment."""
+    length = sum(math.dist(a, b) for a, b in zip(vertices, vertices[1:]))
+    hint = min(max(s_hint, 0.0), length)
+    lo, hi = max(hint - window, 0.0), min(hint + window, length)
+    projection = path.project(query, s_hint=s_hint, window=window)
+    assert projection.distance == pytest.approx(
+        brute_force_window_distance(vertices, query, lo, hi), abs=1e-9)
+    assert lo - 1e-9 <= projection.s <= hi + 1e-9
+    assert math.dist(query, projection.point) == pytest.approx(projection.distance, abs=1e-9)
+    # The point lies on the segment it names, at its arc length.
+    a, b = path.points[projection.segment], path.points[projection.segment + 1]
+    assert distance_to_segment(projection.point, a, b) <= 1e-9
+    s_on_segment = sum(math.dist(p, r) for p, r in zip(path.points[:projection.segment],
+                                                       path.points[1:projection.segment + 1]))
+    assert projection.s == pytest.approx(
+        s_on_segment + math.dist(a, projection.point), abs=1e-9)
+    # Frozen and read-only like a projection built by the public constructor.
+    with pytest.raises(ValueError):
+        projection.point[0] = 0.0
+    with pytest.raises(AttributeError):
+        projection.s = 0.0  # type: ignore[misc]
+    return projection
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.lists(planar_points, min_size=2, max_size=8), planar_points,
+       st.floats(min_value=-5.0, max_value=150.0), st.floats(min_value=0.0, max_value=60.0))
+def test_windowed_projection_matches_brute_force(vertices, query, s_hint, window):
+    try:
+        path = PolylinePath(vertices)
+    except ValueError:
+        return  # all points within 1e-12 m of their predecessors (see the test above)
+    # Use the vertices the path kept, so that both sides measure the same polyline.
+    check_windowed_projection(path, path.points.tolist(), query, s_hint, window)
+
+
+def test_windowed_projection_on_a_dense_closed_path_matches_brute_force():
+    # The trackers' case: about 500 vertices 5 cm apart, a 2 m window around the progress,
+    # queries near the path, windows whose ends fall on vertices, mid-segment or past the
+    # seam of the closed path.
+    rng = np.random.default_rng(20240606)
+    angles = np.linspace(0.0, 2.0 * math.pi, 503)
+    vertices = np.column_stack((2.0 * np.sin(angles), 2.0 * np.sin(angles) * np.cos(angles)))
+    vertices[-1] = vertices[0]
+    path = PolylinePath(vertices)
+    assert path.closed
+    s_vertices = path.s
+    for _ in range(300):
+        s_hint = float(rng.uniform(-1.0, path.length + 1.0))
+        if rng.random() < 0.3:
+            s_hint = float(s_vertices[rng.integers(len(s_vertices))])
+        window = float(rng.choice([2.0, 0.0, float(rng.uniform(0.0, 4.0)),
+                                   float(s_vertices[rng.integers(1, 20)])]))
+        near = np.array([2.0 * math.sin(rng.uniform(0.0, 2.0 * math.pi)), 0.0])
+        near[1] = near[0] * math.sqrt(max(1.0 - (near[0] / 2.0) ** 2, 0.0))
+        query = near + rng.normal(scale=0.3, size=2)
+        if rng.random() < 0.2:
+            query = path.points[rng.integers(len(path.points))]  # exactly on a vertex
+        check_windowed_projection(path, path.points.tolist(), query, s_hint, window)

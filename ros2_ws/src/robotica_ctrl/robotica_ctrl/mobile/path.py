@@ -13,6 +13,7 @@ Frames are REP-103: headings from the x axis, counter-clockwise; lateral offsets
 to the left of the direction of travel.
 """
 
+from bisect import bisect_left, bisect_right
 from dataclasses import dataclass
 import math
 
@@ -93,6 +94,19 @@ class PathProjection:
         point.flags.writeable = False
         object.__setattr__(self, 'point', point)
 
+    @classmethod
+    def _from_checked(cls, s: float, x: float, y: float, segment: int, tangent_heading: float,
+                      cross_track: float, along_track: float,
+                      distance: float) -> 'PathProjection':
+        """Build a projection from finite values already checked by the caller (no checks)."""
+        point = np.array([x, y])
+        point.flags.writeable = False
+        projection = cls.__new__(cls)
+        projection.__dict__.update(s=s, point=point, segment=segment,
+                                   tangent_heading=tangent_heading, cross_track=cross_track,
+                                   along_track=along_track, distance=distance)
+        return projection
+
 
 class PolylinePath:
     """
@@ -144,6 +158,18 @@ class PolylinePath:
         self._tangents = _read_only(delta / seg_len[:, np.newaxis])
         self._headings = _read_only(np.arctan2(delta[:, 1], delta[:, 0]))
         self._closed = bool(np.hypot(*(p[-1] - p[0])) <= _CLOSED_TOLERANCE)
+        # Per-call work reads these: contiguous coordinate columns for the vectorised search,
+        # and Python floats for the scalar steps (bisect, one segment), equal to the arrays.
+        self._x = np.ascontiguousarray(p[:, 0])
+        self._y = np.ascontiguousarray(p[:, 1])
+        self._tx = np.ascontiguousarray(self._tangents[:, 0])
+        self._ty = np.ascontiguousarray(self._tangents[:, 1])
+        self._s_list: list[float] = self._s.tolist()
+        self._seg_len_list: list[float] = seg_len.tolist()
+        self._points_list: list[list[float]] = p.tolist()
+        self._tangents_list: list[list[float]] = self._tangents.tolist()
+        self._headings_list: list[float] = self._headings.tolist()
+        self._length = self._s_list[-1]
 
     @property
     def points(self) -> NDArray[np.float64]:
@@ -158,7 +184,7 @@ class PolylinePath:
     @property
     def length(self) -> float:
         """Total arc length [m]."""
-        return float(self._s[-1])
+        return self._length
 
     @property
     def tangents(self) -> NDArray[np.float64]:
@@ -191,9 +217,9 @@ class PolylinePath:
 
         """
         i, u = self._locate(s)
-        f = u / float(self._seg_len[i])
-        point: NDArray[np.float64] = (1.0 - f) * self._points[i] + f * self._points[i + 1]
-        return point
+        f = u / self._seg_len_list[i]
+        (xa, ya), (xb, yb) = self._points_list[i], self._points_list[i + 1]
+        return np.array([(1.0 - f) * xa + f * xb, (1.0 - f) * ya + f * yb])
 
     def heading_at(self, s: float) -> float:
         """
@@ -211,7 +237,7 @@ class PolylinePath:
         1.5707963267948966
 
         """
-        return float(self._headings[self._locate(s)[0]])
+        return self._headings_list[self._locate(s)[0]]
 
     def project(self, point: ArrayLike, s_hint: float | None = None,
                 window: float | None = None) -> PathProjection:
@@ -251,36 +277,68 @@ class PolylinePath:
 
         """
         q = np.asarray(point, dtype=np.float64)
-        if q.shape != (2,) or not np.all(np.isfinite(q)):
+        if q.shape != (2,):
+            raise ValueError(f'point must be a finite (2,) vector, got {point!r}')
+        qx, qy = q.tolist()
+        if not (math.isfinite(qx) and math.isfinite(qy)):
             raise ValueError(f'point must be a finite (2,) vector, got {point!r}')
         lo, hi = self._search_interval(s_hint, window)
         # Segment i overlaps [lo, hi] when s[i + 1] >= lo and s[i] <= hi.
-        first = max(int(np.searchsorted(self._s, lo, side='left')) - 1, 0)
-        stop = min(int(np.searchsorted(self._s, hi, side='right')), len(self._seg_len))
-        a = self._points[first:stop]
-        b = self._points[first + 1:stop + 1]
-        s0 = self._s[first:stop]
-        seg_len = self._seg_len[first:stop]
-        t = np.einsum('ij,ij->i', q - a, self._tangents[first:stop]) / seg_len
-        t = np.clip(np.clip(t, (lo - s0) / seg_len, (hi - s0) / seg_len), 0.0, 1.0)
-        closest = (1.0 - t)[:, np.newaxis] * a + t[:, np.newaxis] * b
-        dist = np.hypot(q[0] - closest[:, 0], q[1] - closest[:, 1])
-        k = int(np.flatnonzero(dist <= dist.min() + _TIE_TOLERANCE)[0])
+        first = max(bisect_left(self._s_list, lo) - 1, 0)
+        stop = min(bisect_right(self._s_list, hi), len(self._seg_len_list))
+        # Parameter t in [0, 1] of each segment's closest point, cut at the window's ends.
+        ax, ay = self._x[first:stop], self._y[first:stop]
+        t = qx - ax
+        t *= self._tx[first:stop]
+        dy = qy - ay
+        dy *= self._ty[first:stop]
+        t += dy
+        t /= self._seg_len[first:stop]
+        s_list, seg_len = self._s_list, self._seg_len_list
+        if lo > -math.inf:
+            # Only the first segment starts before lo (s[first] < lo <= s[first + 1]).
+            t_lo = (lo - s_list[first]) / seg_len[first]
+            if t[0] < t_lo:
+                t[0] = t_lo
+        if hi < math.inf:
+            # Only segments with s[i + 1] >= hi can be cut: s[i + 1] < hi, s[i + 1] being
+            # s[i] + seg_len[i] rounded to nearest, gives hi - s[i] >= seg_len[i] exactly.
+            for i in range(max(bisect_left(s_list, hi) - 1, first), stop):
+                t_hi = (hi - s_list[i]) / seg_len[i]
+                if t[i - first] > t_hi:
+                    t[i - first] = t_hi
+        np.maximum(t, 0.0, out=t)  # also turns a -0.0 into 0.0
+        np.minimum(t, 1.0, out=t)
+        # Distance to each closest point (1 - t) a + t b; the first within the tie wins.
+        u = 1.0 - t
+        cx = u * ax
+        cx += t * self._x[first + 1:stop + 1]
+        cy = u * ay
+        cy += t * self._y[first + 1:stop + 1]
+        np.subtract(qx, cx, out=cx)
+        np.subtract(qy, cy, out=cy)
+        dist = np.hypot(cx, cy)
+        d_min = float(dist[dist.argmin()])  # NaN if a distance is (argmin stops at a NaN)
+        k = int((dist <= d_min + _TIE_TOLERANCE).argmax())
         i = first + k
-        cross_track, along_track = self._offsets(q - closest[k], i, float(t[k]),
-                                                 float(dist[k]))
-        return PathProjection(
-            s=float(self._s[i] + t[k] * self._seg_len[i]), point=closest[k], segment=i,
-            tangent_heading=float(self._headings[i]), cross_track=cross_track,
-            along_track=along_track, distance=float(dist[k]))
+        t_k, distance = float(t[k]), float(dist[k])
+        (xa, ya), (xb, yb) = self._points_list[i], self._points_list[i + 1]
+        px, py = (1.0 - t_k) * xa + t_k * xb, (1.0 - t_k) * ya + t_k * yb
+        cross_track, along_track = self._offsets(qx - px, qy - py, i, t_k, distance)
+        s = s_list[i] + t_k * seg_len[i]
+        values = (s, px, py, cross_track, along_track, d_min)
+        if not all(map(math.isfinite, values)):  # only if coordinates overflow
+            raise ValueError(f'projection values must be finite, got {values!r}')
+        return PathProjection._from_checked(s, px, py, i, self._headings_list[i], cross_track,
+                                            along_track, distance)
 
     def _locate(self, s: float) -> tuple[int, float]:
         """Return the segment holding arc length ``s`` and the distance [m] along it."""
         if not math.isfinite(s):
             raise ValueError(f's must be finite, got {s!r}')
-        s = min(max(float(s), 0.0), self.length)
-        i = min(int(np.searchsorted(self._s, s, side='right')) - 1, len(self._seg_len) - 1)
-        return i, s - float(self._s[i])
+        s = min(max(float(s), 0.0), self._length)
+        i = min(bisect_right(self._s_list, s) - 1, len(self._seg_len_list) - 1)
+        return i, s - self._s_list[i]
 
     def _search_interval(self, s_hint: float | None,
                          window: float | None) -> tuple[float, float]:
@@ -291,19 +349,19 @@ class PolylinePath:
             raise ValueError('give s_hint and window together, or neither')
         if not (math.isfinite(s_hint) and math.isfinite(window) and window >= 0.0):
             raise ValueError(f'need finite s_hint and window >= 0 m, got {s_hint!r}, {window!r}')
-        hint = min(max(float(s_hint), 0.0), self.length)
+        hint = min(max(float(s_hint), 0.0), self._length)
         # Past an end the interval is left open, so that the end vertex is reached exactly.
         lo = hint - window if hint - window > 0.0 else -math.inf
-        hi = hint + window if hint + window < self.length else math.inf
+        hi = hint + window if hint + window < self._length else math.inf
         return lo, hi
 
-    def _offsets(self, delta: NDArray[np.float64], i: int, t: float,
+    def _offsets(self, dx: float, dy: float, i: int, t: float,
                  distance: float) -> tuple[float, float]:
-        """Return (cross_track, along_track) [m] of offset ``delta`` from point t of segment i."""
-        tangent = self._tangents[i]
-        cross = float(tangent[0] * delta[1] - tangent[1] * delta[0])
-        along = float(tangent @ delta)
-        last = len(self._seg_len) - 1
+        """Return (cross_track, along_track) [m] of offset (dx, dy) from point t of segment i."""
+        tx, ty = self._tangents_list[i]
+        cross = tx * dy - ty * dx
+        along = tx * dx + ty * dy + 0.0  # + 0.0: a zero offset gives 0.0, not -0.0
+        last = len(self._seg_len_list) - 1
         neighbour = i - 1 if t == 0.0 else i + 1 if t == 1.0 else None
         if neighbour is None:
             return cross, 0.0
@@ -315,8 +373,8 @@ class PolylinePath:
             return cross, max(along, 0.0)
         # At a vertex the side is that of the bisector of the two tangents; at a cusp, where
         # the bisector vanishes, that of the segment; straight beyond a cusp, left.
-        bisector = tangent + self._tangents[neighbour]
-        side = float(bisector[0] * delta[1] - bisector[1] * delta[0])
+        nx, ny = self._tangents_list[neighbour]
+        side = (tx + nx) * dy - (ty + ny) * dx
         if side == 0.0:
             side = cross if cross != 0.0 else 1.0
         return math.copysign(distance, side), 0.0

@@ -55,12 +55,20 @@ def curvature_to_point(p: ArrayLike) -> float:
 
     """
     q = np.asarray(p, dtype=np.float64)
-    if q.shape != (2,) or not np.all(np.isfinite(q)):
+    if q.shape != (2,):
         raise ValueError(f'p must be a finite (2,) vector, got {p!r}')
-    lookahead_sq = float(q @ q)
+    x, y = q.tolist()
+    if not (math.isfinite(x) and math.isfinite(y)):
+        raise ValueError(f'p must be a finite (2,) vector, got {p!r}')
+    return _curvature_xy(x, y)
+
+
+def _curvature_xy(x: float, y: float) -> float:
+    """Return γ = 2 y / (x² + y²) [1/m], book (9.5), for a finite goal (x, y) [m] in base_link."""
+    lookahead_sq = x * x + y * y
     if lookahead_sq == 0.0:
         raise ValueError('the goal point is at the vehicle (L = 0): curvature undefined')
-    return 2.0 * float(q[1]) / lookahead_sq
+    return 2.0 * y / lookahead_sq
 
 
 @dataclass(frozen=True)
@@ -143,6 +151,18 @@ class PurePursuitCommand:
         goal.flags.writeable = False
         object.__setattr__(self, 'goal_point', goal)
 
+    @classmethod
+    def _from_checked(cls, linear: float, angular: float, curvature: float,
+                      goal_point: NDArray[np.float64], projection: PathProjection,
+                      finished: bool) -> 'PurePursuitCommand':
+        """Build a command around ``goal_point``, a (2,) float64 array no one else holds."""
+        goal_point.flags.writeable = False
+        command = cls.__new__(cls)
+        command.__dict__.update(linear=linear, angular=angular, curvature=curvature,
+                                goal_point=goal_point, projection=projection,
+                                finished=finished)
+        return command
+
 
 class PurePursuit(PathTrackerBase[PurePursuitParams]):
     """
@@ -213,7 +233,7 @@ class PurePursuit(PathTrackerBase[PurePursuitParams]):
         params = self._params
         goal = self._path.point_at(projection.s + params.lookahead_distance)
         if self._finished:
-            return PurePursuitCommand(0.0, 0.0, 0.0, goal, projection, True)
+            return PurePursuitCommand._from_checked(0.0, 0.0, 0.0, goal, projection, True)
         remaining = self._path.length - projection.s
         gamma = _steering_curvature(goal - x[:2], float(x[2]))
         v = params.desired_linear_velocity
@@ -221,7 +241,7 @@ class PurePursuit(PathTrackerBase[PurePursuitParams]):
             v = max(v * remaining / params.approach_distance, params.min_approach_velocity)
         if abs(v * gamma) > params.max_angular_velocity:
             v = params.max_angular_velocity / abs(gamma)
-        return PurePursuitCommand(v, v * gamma, gamma, goal, projection, False)
+        return PurePursuitCommand._from_checked(v, v * gamma, gamma, goal, projection, False)
 
 
 def _steering_curvature(offset: NDArray[np.float64], theta: float) -> float:
@@ -230,11 +250,14 @@ def _steering_curvature(offset: NDArray[np.float64], theta: float) -> float:
 
     Book (9.5)-(9.7) with the reversed-heading safeguard of §9.3.1 for a goal behind.
     """
+    dx, dy = offset.tolist()
     c, s = math.cos(theta), math.sin(theta)
-    p_base = np.array([c * offset[0] + s * offset[1], -s * offset[0] + c * offset[1]])
-    gamma = curvature_to_point(p_base)
-    if p_base[0] > 0.0:
+    x, y = c * dx + s * dy, -s * dx + c * dy  # goal in base_link [m]
+    if not (math.isfinite(x) and math.isfinite(y)):
+        raise ValueError(f'the goal point must be finite, got {(x, y)!r}')
+    gamma = _curvature_xy(x, y)
+    if x > 0.0:
         return gamma
     # Goal behind: sign(y) max(|2 y / D²|, 2 / D), which is sign(y) 2 / D as |y| <= D.
-    larger = 2.0 / math.hypot(p_base[0], p_base[1])
-    return larger if p_base[1] >= 0.0 else -larger
+    larger = 2.0 / math.hypot(x, y)
+    return larger if y >= 0.0 else -larger
