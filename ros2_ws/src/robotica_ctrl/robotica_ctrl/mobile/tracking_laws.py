@@ -191,7 +191,8 @@ LAW_PARAMETERS: dict[str, dict[str, LawParameter]] = {
                                   FRENET_LAWS)}),
     # A finite curvature limit by default: unlimited, GPC's curvature steps at a sharp corner
     # reached 48 rad/s at 0.5 m/s in the tracking benchmark.
-    'gpc': _specs(GpcTrackerParams(), _GPC, overrides={'max_curvature': 2.0}),
+    'gpc': _specs(GpcTrackerParams(), _GPC, overrides={'max_curvature': 2.0,
+                                                       'model_speed_tolerance': 0.1}),
 }
 
 
@@ -358,7 +359,12 @@ class _FrenetLaw(_Wrapped):
 
 
 class _GpcLaw(_Wrapped):
-    """GPC once per ``sample_time``; the command is held in between (zero-order hold)."""
+    """
+    GPC once per ``sample_time``; the command is held in between (zero-order hold).
+
+    The model is that of the measured speed once it exceeds a fifth of the commanded one
+    (rebuilt when it changes by ``model_speed_tolerance``), of the commanded speed before.
+    """
 
     def __init__(self, path: PolylinePath, gains: Mapping[str, Any]) -> None:
         super().__init__(path, GpcPathTracker(path, _params(GpcTrackerParams, gains)),
@@ -370,7 +376,10 @@ class _GpcLaw(_Wrapped):
                speed: float | None = None) -> TrackerOutput:
         x = check_pose(pose)
         if time >= self._next_time - 1e-9 or self._core.finished:
-            command = self._core.update(x)
+            params = self._core.params   # the model at the measured speed, once moving (§9.5)
+            moving = speed is not None and math.isfinite(speed) and \
+                speed > 0.2 * params.linear_velocity
+            command = self._core.update(x, speed if moving else None)
             self._held = (command.linear, command.angular)
             self._next_time = time + self._core.params.sample_time
             return _output(command.linear, command.angular, x, command.projection,
