@@ -31,7 +31,7 @@ Frames are REP-103: x forward, y left, θ from the x axis, lateral errors > 0 le
 from abc import ABC, abstractmethod
 from dataclasses import dataclass, fields, replace
 import math
-from typing import Any, Callable, Mapping
+from typing import Any, Callable, Mapping, NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -48,7 +48,6 @@ from robotica_ctrl.mobile.tracker_base import check_pose
 from robotica_ctrl.mobile.trajectory_tracking import (LAWS as TRAJECTORY_LAWS,
                                                       PostureReference, TrajectoryTracker,
                                                       TrajectoryTrackingParams)
-from robotica_kin.angles import wrap_to_pi
 
 __all__ = ['LAWS', 'LAW_PARAMETERS', 'LawParameter', 'TimedPath', 'TrackerOutput',
            'TrackingLaw', 'law_defaults', 'make_law']
@@ -206,8 +205,7 @@ def law_defaults(law: str) -> dict[str, float | int | str]:
     return {name: spec.default for name, spec in _law_specs(law).items()}
 
 
-@dataclass(frozen=True)
-class TrackerOutput:
+class TrackerOutput(NamedTuple):
     """
     One step of any law: the command and the errors the node reports as ``TrackingError``.
 
@@ -265,12 +263,19 @@ class TrackingLaw(ABC):
         """Restart from the beginning of the path (and of the trajectory)."""
 
 
+def _heading_error(theta: float, reference: float) -> float:
+    """Return θ - θ_ref [rad] wrapped to (-π, π] (scalar, cheaper than wrap_to_pi)."""
+    error = math.remainder(theta - reference, math.tau)
+    return math.pi if error == -math.pi else error
+
+
 def _output(linear: float, angular: float, pose: NDArray[np.float64],
-            projection: PathProjection, target: ArrayLike, finished: bool) -> TrackerOutput:
-    heading = float(wrap_to_pi(float(pose[2]) - projection.tangent_heading))
-    return TrackerOutput(float(linear), float(angular), float(projection.cross_track), heading,
-                         float(projection.along_track),
-                         np.asarray(target, dtype=np.float64), finished)
+            projection: PathProjection, target: NDArray[np.float64],
+            finished: bool) -> TrackerOutput:
+    """Return the output of a path law whose core has accepted ``pose`` (x, y, θ)."""
+    return TrackerOutput(float(linear), float(angular), projection.cross_track,
+                         _heading_error(float(pose[2]), projection.tangent_heading),
+                         projection.along_track, target, finished)
 
 
 class _Wrapped(TrackingLaw):
@@ -297,8 +302,9 @@ class _PurePursuitLaw(_Wrapped):
 
     def update(self, pose: ArrayLike, time: float,
                speed: float | None = None) -> TrackerOutput:
-        command = self._core.update(pose)
-        return _output(command.linear, command.angular, check_pose(pose), command.projection,
+        x = np.asarray(pose, dtype=np.float64)   # the core checks it
+        command = self._core.update(x)
+        return _output(command.linear, command.angular, x, command.projection,
                        command.goal_point, command.finished)
 
 
@@ -318,8 +324,9 @@ class _AdaptiveLaw(TrackingLaw):
 
     def update(self, pose: ArrayLike, time: float,
                speed: float | None = None) -> TrackerOutput:
-        command = self._core.update(pose, speed)
-        return _output(command.linear, command.angular, check_pose(pose), command.projection,
+        x = np.asarray(pose, dtype=np.float64)   # the core checks it
+        command = self._core.update(x, speed)
+        return _output(command.linear, command.angular, x, command.projection,
                        command.goal_point, command.finished)
 
     def set_gains(self, gains: Mapping[str, Any]) -> None:
@@ -494,7 +501,7 @@ class _TrajectoryLaw(TrackingLaw):
         c, s = math.cos(reference.theta), math.sin(reference.theta)
         cross = -s * error_x + c * error_y
         behind = -(c * error_x + s * error_y)
-        heading = float(wrap_to_pi(float(x[2]) - reference.theta))
+        heading = _heading_error(float(x[2]), reference.theta)
         target = np.array([reference.x, reference.y])
         if time >= self._reference.end_time and \
                 math.hypot(error_x, error_y) <= float(self._gains['goal_tolerance']):
