@@ -7,9 +7,9 @@ import argparse
 import sys
 from typing import Optional
 
-from robotica_sim.cli import bench, run
+from robotica_sim.cli import bench, info, run
 
-VERBS = {'run': run, 'bench': bench}
+VERBS = {'run': run, 'info': info, 'bench': bench}
 
 
 def build_parser() -> argparse.ArgumentParser:

@@ -1,0 +1,138 @@
+"""
+What a recorded run holds: topics, types, counts, rates, duration and the run's scenario.
+
+:func:`bag_info` reads a rosbag2 directory (``metadata.yaml`` and its MCAP file, as the
+``recorder`` node writes it) with ``rosbags`` and returns a :class:`BagInfo`: the
+``ros2 bag info`` of this route (ros2cli cannot be installed from pip), plus what the recorder
+stored in the metadata's ``custom_data``: the scenario's name, seed and pacing. Times are the
+bag's receive times [s] (simulated time for a ``use_sim_time`` recorder).
+"""
+
+from dataclasses import dataclass
+from pathlib import Path
+
+from rosbags.highlevel import AnyReader
+import yaml
+
+__all__ = ['BagError', 'BagInfo', 'TopicInfo', 'bag_info', 'format_info']
+
+
+class BagError(Exception):
+    """The path is not a readable bag; the message says why."""
+
+
+@dataclass(frozen=True)
+class TopicInfo:
+    """
+    One topic of a bag.
+
+    ``rate`` [Hz] is (count - 1) / (last - first) over the topic's own receive times, or 0 for
+    fewer than two messages or no time between them.
+    """
+
+    name: str
+    msgtype: str
+    count: int
+    first: float   # [s] receive time of the first message
+    last: float    # [s] receive time of the last message
+    rate: float    # [Hz]
+
+
+@dataclass(frozen=True)
+class BagInfo:
+    """A bag's summary: its topics, time span, storage and the run's scenario."""
+
+    path: Path
+    topics: tuple[TopicInfo, ...]
+    start: float        # [s] first receive time
+    end: float          # [s] last receive time
+    message_count: int
+    size: int           # [bytes] of the bag's files
+    compression: str    # '' when none
+    scenario: dict      # name, description, seed, pacing, duration when recorded; else {}
+
+    @property
+    def duration(self) -> float:
+        """Return the time between the first and the last message [s]."""
+        return self.end - self.start
+
+
+def _scenario(bag: Path) -> dict:
+    """Return the scenario the recorder stored in the metadata's custom_data, or {}."""
+    try:
+        metadata = yaml.safe_load((bag / 'metadata.yaml').read_text())
+        custom = metadata['rosbag2_bagfile_information'].get('custom_data') or {}
+        scenario = yaml.safe_load(custom.get('robotica.scenario.yaml', '')) or {}
+    except (OSError, KeyError, TypeError, AttributeError, yaml.YAMLError):
+        return {}
+    if not isinstance(scenario, dict):
+        return {}
+    return {key: scenario[key] for key in ('name', 'description', 'seed', 'pacing', 'duration')
+            if key in scenario}
+
+
+def bag_info(path: str | Path) -> BagInfo:
+    """
+    Return the summary of the rosbag2 directory ``path``.
+
+    Raises
+    ------
+    BagError
+        If ``path`` is not a bag directory, or its metadata or data cannot be read (a truncated
+        file, a missing ``metadata.yaml``: see ``robotica bag repair`` when it exists).
+
+    """
+    bag = Path(path)
+    if not bag.is_dir():
+        raise BagError(f'{bag}: not a bag directory (a rosbag2 bag is a directory with '
+                       'metadata.yaml)')
+    if not (bag / 'metadata.yaml').is_file():
+        raise BagError(f'{bag}: no metadata.yaml, so not a rosbag2 bag (or its recorder was '
+                       'killed before closing it)')
+    try:
+        with AnyReader([bag]) as reader:
+            times: dict[str, list[int]] = {c.topic: [] for c in reader.connections}
+            types = {c.topic: c.msgtype for c in reader.connections}
+            for connection, timestamp, _ in reader.messages():
+                times[connection.topic].append(timestamp)
+            compression = getattr(reader.readers[0], 'compression_format', '') or ''
+    except Exception as err:   # rosbags raises its own errors, OSError and struct errors
+        raise BagError(f'{bag}: cannot read the bag: {err}') from None
+    topics = []
+    for name in sorted(times):
+        stamps = times[name]
+        first = stamps[0] * 1e-9 if stamps else 0.0
+        last = stamps[-1] * 1e-9 if stamps else 0.0
+        rate = (len(stamps) - 1) / (last - first) if len(stamps) > 1 and last > first else 0.0
+        topics.append(TopicInfo(name, types[name], len(stamps), first, last, rate))
+    counted = [t for t in topics if t.count]
+    start = min((t.first for t in counted), default=0.0)
+    end = max((t.last for t in counted), default=0.0)
+    size = sum(f.stat().st_size for f in bag.iterdir() if f.is_file())
+    return BagInfo(bag, tuple(topics), start, end, sum(t.count for t in topics), size,
+                   compression, _scenario(bag))
+
+
+def format_info(info: BagInfo) -> str:
+    """Return ``info`` as the text ``robotica info`` prints (aligned like ``ros2 bag info``)."""
+    scenario = info.scenario
+    lines = [f'Bag:          {info.path}',
+             f'Size:         {info.size / 1e6:.2f} MB'
+             + (f' ({info.compression} compressed)' if info.compression else ''),
+             f'Duration:     {info.duration:.3f} s',
+             f'Start:        {info.start:.3f} s',
+             f'End:          {info.end:.3f} s',
+             f'Messages:     {info.message_count}']
+    if scenario:
+        name, seed = scenario.get('name', '?'), scenario.get('seed', '?')
+        lines.append(f'Scenario:     {name} (seed {seed}, pacing {scenario.get("pacing", "?")})')
+        if 'description' in scenario:
+            lines.append(f'              {scenario["description"]}')
+    width = max((len(t.name) for t in info.topics), default=5)
+    type_width = max((len(t.msgtype) for t in info.topics), default=4)
+    lines.append(f'Topics:       {len(info.topics)}')
+    lines.append(f'  {"topic":<{width}}  {"type":<{type_width}}  {"count":>7}  {"rate [Hz]":>9}')
+    for t in info.topics:
+        lines.append(f'  {t.name:<{width}}  {t.msgtype:<{type_width}}  {t.count:>7}  '
+                     f'{t.rate:>9.2f}')
+    return '\n'.join(lines)

@@ -1,0 +1,76 @@
+"""
+Tests of robotica_sim.bag_info and ``robotica info``: a bag written here with rosbags.
+
+The reference bag holds 11 Float64 messages on /a at 10 Hz (t = 1.0 ... 2.0 s) and 3 on /b at
+0.5 Hz (t = 1.0, 3.0, 5.0 s), and a scenario in its custom_data, as the recorder stores it.
+"""
+import json
+import subprocess
+import sys
+
+import pytest
+from robotica_sim.bag_info import bag_info, BagError, format_info
+from rosbags.rosbag2 import StoragePlugin, Writer
+from rosbags.typesys import get_typestore, Stores
+
+SCENARIO = 'name: ej9_3a\ndescription: Ejemplo 9.3 (a)\nseed: 7\npacing: lockstep\n'
+
+
+@pytest.fixture
+def bag(tmp_path):
+    store = get_typestore(Stores.ROS2_JAZZY)
+    Float64 = store.types['std_msgs/msg/Float64']
+    path = tmp_path / 'bag'
+    writer = Writer(path, version=9, storage_plugin=StoragePlugin.MCAP)
+    writer.open()
+    writer.set_custom_data('robotica.scenario.yaml', SCENARIO)
+    a = writer.add_connection('/a', 'std_msgs/msg/Float64', typestore=store)
+    b = writer.add_connection('/b', 'std_msgs/msg/Float64', typestore=store)
+    for i in range(11):
+        writer.write(a, 1_000_000_000 + i * 100_000_000,
+                     store.serialize_cdr(Float64(data=float(i)), 'std_msgs/msg/Float64'))
+    for t in (1, 3, 5):
+        writer.write(b, t * 1_000_000_000,
+                     store.serialize_cdr(Float64(data=0.0), 'std_msgs/msg/Float64'))
+    writer.close()
+    return path
+
+
+def test_counts_rates_and_span(bag):
+    info = bag_info(bag)
+    topics = {t.name: t for t in info.topics}
+    assert (topics['/a'].count, topics['/b'].count) == (11, 3)
+    assert topics['/a'].rate == pytest.approx(10.0)
+    assert topics['/b'].rate == pytest.approx(0.5)
+    assert topics['/a'].msgtype == 'std_msgs/msg/Float64'
+    assert (info.start, info.end, info.duration) == pytest.approx((1.0, 5.0, 4.0))
+    assert info.message_count == 14
+    assert info.scenario == {'name': 'ej9_3a', 'description': 'Ejemplo 9.3 (a)', 'seed': 7,
+                             'pacing': 'lockstep'}
+    text = format_info(info)
+    assert 'ej9_3a (seed 7, pacing lockstep)' in text and '/b' in text
+
+
+def test_not_a_bag_and_a_truncated_bag_are_clear_errors(tmp_path, bag):
+    with pytest.raises(BagError, match='not a bag directory'):
+        bag_info(tmp_path / 'missing')
+    (tmp_path / 'empty').mkdir()
+    with pytest.raises(BagError, match='no metadata.yaml'):
+        bag_info(tmp_path / 'empty')
+    data = next(bag.glob('*.mcap'))
+    data.write_bytes(data.read_bytes()[:200])
+    with pytest.raises(BagError, match='cannot read the bag'):
+        bag_info(bag)
+
+
+def test_command_prints_json_and_fails_cleanly(tmp_path, bag):
+    command = [sys.executable, '-m', 'robotica_sim.cli.main', 'info']
+    done = subprocess.run([*command, str(bag), '--json'], capture_output=True, text=True,
+                          timeout=60)
+    assert done.returncode == 0, done.stderr
+    summary = json.loads(done.stdout)
+    assert summary['duration'] == pytest.approx(4.0) and len(summary['topics']) == 2
+    failed = subprocess.run([*command, str(tmp_path)], capture_output=True, text=True,
+                            timeout=60)
+    assert failed.returncode == 1
+    assert 'no metadata.yaml' in failed.stderr and 'Traceback' not in failed.stderr
