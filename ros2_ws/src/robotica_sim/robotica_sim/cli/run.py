@@ -39,6 +39,7 @@ EPILOG = """examples:
   robotica run my_scenario.yaml --json     machine-readable summary on stdout
 """
 MATCH_SETTLE = 0.5   # [s] wall clock, see _wait_ready
+GRAPH_WAIT = 5.0     # [s] wall clock, see _wait_for_graph
 STOP_ORDER = ['simulator', 'path_tracker', 'joint_controller', 'odometry', 'encoder_emulator',
               'gyro_emulator', 'compass_emulator', 'gps_emulator', 'path_publisher',
               'joint_trajectory_publisher', 'recorder']
@@ -139,6 +140,7 @@ def _wait_ready(args, executor, node, supervisor, names) -> None:
         _check_alive(supervisor, names)
         answer = _call(executor, ready, deadline)
         if answer.success:
+            _wait_for_graph(args, executor, node, names)
             # The recorder sees its own side of each match; a publisher may match it a moment
             # later. Streams keep a history for that (robotica_kin.nodes.qos), commands do not:
             # give the publishers' side of discovery this long to complete.
@@ -150,6 +152,39 @@ def _wait_ready(args, executor, node, supervisor, names) -> None:
             raise RunFailed(f'discovery incomplete after {args.discovery_timeout} s: '
                             f'{answer.message}')
         executor.spin_once(timeout_sec=0.2)
+
+
+def _unpublished_subscriptions(node, names: list[str]) -> list[str]:
+    """Return '<node>: <topic>' for each subscription of the run's nodes with no publisher yet."""
+    waiting = []
+    for name in names:
+        try:
+            topics = node.get_subscriber_names_and_types_by_node(name, '/')
+        except Exception:   # rclpy raises NodeNameNonExistentError before the node is seen
+            waiting.append(f'{name}: (not discovered)')
+            continue
+        waiting += [f'{name}: {topic}' for topic, _ in topics
+                    if topic not in ('/parameter_events', '/clock')
+                    and not node.get_publishers_info_by_topic(topic)]
+    return waiting
+
+
+def _wait_for_graph(args, executor, node, names: list[str]) -> None:
+    """
+    Wait (up to GRAPH_WAIT) until every subscription of the run's nodes has a publisher.
+
+    A node whose subscription is matched late misses the first messages of a volatile topic:
+    an odometry node that saw its gyro 1 s late on a loaded machine lost the first second of
+    turn (a flaky end-to-end test). Some subscriptions may have no publisher in a run (an
+    optional input), so the wait is bounded, and what is still missing is logged.
+    """
+    deadline = time.monotonic() + GRAPH_WAIT
+    waiting = _unpublished_subscriptions(node, names)
+    while waiting and time.monotonic() < deadline:
+        executor.spin_once(timeout_sec=0.1)
+        waiting = _unpublished_subscriptions(node, names)
+    if waiting:
+        _log(args, f'no publisher yet for {", ".join(waiting)}; starting anyway')
 
 
 def _progress(args, t: float, duration: float) -> None:
