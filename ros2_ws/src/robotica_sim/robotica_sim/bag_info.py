@@ -14,7 +14,7 @@ from pathlib import Path
 from rosbags.highlevel import AnyReader
 import yaml
 
-__all__ = ['BagError', 'BagInfo', 'TopicInfo', 'bag_info', 'format_info']
+__all__ = ['BagError', 'BagInfo', 'TopicInfo', 'bag_info', 'format_info', 'open_bag']
 
 
 class BagError(Exception):
@@ -71,15 +71,15 @@ def _scenario(bag: Path) -> dict:
             if key in scenario}
 
 
-def bag_info(path: str | Path) -> BagInfo:
+def open_bag(path: str | Path) -> AnyReader:
     """
-    Return the summary of the rosbag2 directory ``path``.
+    Return an open ``rosbags`` reader of the rosbag2 directory ``path`` (close it after use).
 
     Raises
     ------
     BagError
-        If ``path`` is not a bag directory, or its metadata or data cannot be read (a truncated
-        file, a missing ``metadata.yaml``: see ``robotica bag repair`` when it exists).
+        If ``path`` is not a bag directory, or its metadata or data cannot be read (a
+        truncated file, a missing ``metadata.yaml``).
 
     """
     bag = Path(path)
@@ -87,17 +87,38 @@ def bag_info(path: str | Path) -> BagInfo:
         raise BagError(f'{bag}: not a bag directory (a rosbag2 bag is a directory with '
                        'metadata.yaml)')
     if not (bag / 'metadata.yaml').is_file():
-        raise BagError(f'{bag}: no metadata.yaml, so not a rosbag2 bag (or its recorder was '
+        raise BagError(f'{bag}: not a bag directory: no metadata.yaml (or its recorder was '
                        'killed before closing it)')
     try:
-        with AnyReader([bag]) as reader:
-            times: dict[str, list[int]] = {c.topic: [] for c in reader.connections}
-            types = {c.topic: c.msgtype for c in reader.connections}
-            for connection, timestamp, _ in reader.messages():
-                times[connection.topic].append(timestamp)
-            compression = getattr(reader.readers[0], 'compression_format', '') or ''
+        reader = AnyReader([bag])
+        reader.open()
     except Exception as err:   # rosbags raises its own errors, OSError and struct errors
         raise BagError(f'{bag}: cannot read the bag: {err}') from None
+    return reader
+
+
+def bag_info(path: str | Path) -> BagInfo:
+    """
+    Return the summary of the rosbag2 directory ``path``.
+
+    Raises
+    ------
+    BagError
+        As :func:`open_bag`, also for data that cannot be read past the bag's summary.
+
+    """
+    bag = Path(path)
+    reader = open_bag(bag)
+    try:
+        times: dict[str, list[int]] = {c.topic: [] for c in reader.connections}
+        types = {c.topic: c.msgtype for c in reader.connections}
+        for connection, timestamp, _ in reader.messages():
+            times[connection.topic].append(timestamp)
+        compression = getattr(reader.readers[0], 'compression_format', '') or ''
+    except Exception as err:   # a truncated chunk surfaces only while reading
+        raise BagError(f'{bag}: cannot read the bag: {err}') from None
+    finally:
+        reader.close()
     topics = []
     for name in sorted(times):
         stamps = times[name]

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Iterator
 
-from robotica_sim.bag_info import BagError
+from robotica_sim.bag_info import BagError, open_bag
 from rosbags.highlevel import AnyReader
 
 __all__ = ['PlaybackTopic', 'Playback', 'open_playback', 'parse_remaps', 'wall_time']
@@ -88,13 +88,7 @@ def open_playback(path: str | Path, topics: list[str] | None = None,
 
     """
     bag = Path(path)
-    if not (bag / 'metadata.yaml').is_file():
-        raise BagError(f'{bag}: not a bag directory (no metadata.yaml)')
-    try:
-        reader = AnyReader([bag])
-        reader.open()
-    except Exception as err:
-        raise BagError(f'{bag}: cannot read the bag: {err}') from None
+    reader = open_bag(bag)
     in_bag = {c.topic: c for c in reader.connections}
     unknown = [t for t in (topics or []) + list(remaps or {}) if t not in in_bag]
     if unknown:

@@ -43,29 +43,29 @@ class NodeSpec:
     remappings: dict = field(default_factory=dict)
 
 
-def _path_samples(scenario: Scenario) -> np.ndarray:
-    """Return the scenario's path as (N, 2) points [m], or (N, 3) with times [s] (trajectory)."""
+def reference_path(scenario: Scenario) -> tuple[list[list[float]], list[float] | None]:
+    """
+    Return the scenario's path: [x, y] points [m], and each point's time [s] for a trajectory.
+
+    The times are None for a plain path (a shape of two columns).
+    """
     spec = scenario.path
     where = scenario.source or scenario.name
     if spec.shape not in PATH_SHAPES:
         raise ScenarioError(f'{where}: path.shape must be one of {PATH_SHAPES}, '
                             f'got {spec.shape!r}')
     try:
-        return np.asarray(getattr(path_shapes, spec.shape)(**spec.args), dtype=float)
+        samples = np.asarray(getattr(path_shapes, spec.shape)(**spec.args), dtype=float)
     except (TypeError, ValueError) as err:
         raise ScenarioError(f'{where}: path ({spec.shape}): {err}') from None
+    points = [[round(float(x), 9), round(float(y), 9)]   # [m], to 1 nm
+              for x, y in samples[:, :2]]
+    return points, [float(t) for t in samples[:, 2]] if samples.shape[1] == 3 else None
 
 
 def path_points(scenario: Scenario) -> list[list[float]]:
     """Return the scenario's reference path as a list of [x, y] points [m]."""
-    return [[round(float(x), 9), round(float(y), 9)]   # [m], to 1 nm
-            for x, y in _path_samples(scenario)[:, :2]]
-
-
-def path_times(scenario: Scenario) -> list[float] | None:
-    """Return the time [s] of each path point when the path is a trajectory, else None."""
-    samples = _path_samples(scenario)
-    return [float(t) for t in samples[:, 2]] if samples.shape[1] == 3 else None
+    return reference_path(scenario)[0]
 
 
 def recorded_topics(scenario: Scenario) -> tuple[str, ...]:
@@ -207,8 +207,7 @@ def _plan_mobile(scenario: Scenario) -> list[NodeSpec]:
     robot = scenario.robot
     x0, y0, theta0 = robot.initial_pose
     pose = {'initial_pose.x': x0, 'initial_pose.y': y0, 'initial_pose.theta': theta0}
-    points = path_points(scenario)
-    times = path_times(scenario)
+    points, times = reference_path(scenario)
     law = scenario.tracker.law
     if law not in (*LAW_PARAMETERS, 'open_loop'):
         raise ScenarioError(f'{where}: tracker.law must be one of '

@@ -64,7 +64,7 @@ from typing import Any, Callable, Sequence
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from robotica_ctrl.mobile.path import PolylinePath
-from robotica_ctrl.mobile.tracking_laws import LAWS, make_law
+from robotica_ctrl.mobile.tracking_laws import LAWS, make_law, steering_angle
 from robotica_ctrl.path_shapes import circle, figure_eight, straight_line
 from robotica_kin.angles import wrap_to_pi
 from robotica_kin.mobile.ekf_localization import EkfLocalization, OdometryNoise
@@ -393,8 +393,7 @@ def _vehicle_command(steered: bool, linear: float, angular: float) -> tuple[floa
     """Return the simulator's command: (v, 0, ω), or (v, α, 0) with α = atan(l ω / v)."""
     if not steered:
         return linear, 0.0, angular
-    alpha = math.atan(_GEOMETRY.wheelbase * angular / linear) if linear != 0.0 else 0.0
-    return linear, alpha, 0.0
+    return linear, steering_angle(linear, angular, _GEOMETRY.wheelbase), 0.0
 
 
 def tracking_benchmark(laws: Sequence[str] = LAWS, vehicles: Sequence[str] = VEHICLES,

@@ -23,12 +23,12 @@ and sets its ``lookahead_distance`` before each update. Frames are REP-103.
 from dataclasses import dataclass, replace
 import math
 
-import numpy as np
 from numpy.typing import ArrayLike
 
 from robotica_ctrl.mobile.path import PolylinePath
 from robotica_ctrl.mobile.pure_pursuit import PurePursuit, PurePursuitCommand, PurePursuitParams
 from robotica_ctrl.mobile.quintic_tracker import path_curvature
+from robotica_ctrl.mobile.tracker_base import check_pose
 
 __all__ = [
     'AdaptivePurePursuit', 'LOOKAHEAD_RULES', 'LookaheadRule', 'lookahead_by_curvature',
@@ -252,9 +252,7 @@ class AdaptivePurePursuit:
             If ``pose`` is not a finite (3,) vector or ``speed`` is not finite.
 
         """
-        x = np.asarray(pose, dtype=np.float64)
-        if x.shape != (3,) or not np.all(np.isfinite(x)):
-            raise ValueError(f'pose must be a finite (3,) vector (x, y, theta), got {pose!r}')
+        x = check_pose(pose)
         if speed is not None and not math.isfinite(speed):
             raise ValueError(f'speed must be finite, got {speed!r}')
         tracker = self._tracker

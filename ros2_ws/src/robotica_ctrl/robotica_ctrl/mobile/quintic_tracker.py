@@ -38,7 +38,7 @@ from robotica_kin.angles import wrap_to_pi
 
 __all__ = [
     'MAX_GOAL_HEADING', 'QuinticTracker', 'QuinticTrackerCommand', 'QuinticTrackerParams',
-    'path_curvature', 'quintic_coefficients', 'quintic_curvature',
+    'path_curvature', 'path_heading', 'quintic_coefficients', 'quintic_curvature',
 ]
 
 MAX_GOAL_HEADING = 1.3  # [rad] beyond this relative goal heading the pure-pursuit arc is used
@@ -350,7 +350,7 @@ class QuinticTracker(PathTrackerBase[QuinticTrackerParams]):
         lateral = -sin_t * dx + cos_t * dy  # -(9.10)
         if forward == 0.0 and lateral == 0.0:
             raise ValueError('the goal point is at the vehicle: curvature undefined')
-        heading = float(wrap_to_pi(_path_heading(path, s_goal, params.curvature_spacing)
+        heading = float(wrap_to_pi(path_heading(path, s_goal, params.curvature_spacing)
                                    - theta))  # (9.12)
         v = params.desired_linear_velocity
         coefficients = None
@@ -367,8 +367,12 @@ class QuinticTracker(PathTrackerBase[QuinticTrackerParams]):
                                      coefficients)
 
 
-def _path_heading(path: PolylinePath, s: float, spacing: float) -> float:
-    """Return the heading [rad] of the chord through the path points at s ± spacing."""
+def path_heading(path: PolylinePath, s: float, spacing: float) -> float:
+    """
+    Return the heading [rad] of the chord through the path points at s ± ``spacing`` [m].
+
+    The segment's own heading where both points coincide (a path shorter than the chord).
+    """
     a, b = path.point_at(s - spacing), path.point_at(s + spacing)
     if np.hypot(*(b - a)) == 0.0:
         return path.heading_at(s)

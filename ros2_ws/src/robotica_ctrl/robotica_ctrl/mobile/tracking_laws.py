@@ -42,7 +42,7 @@ from robotica_ctrl.mobile.frenet_path_following import (FRENET_LAWS, FrenetParam
 from robotica_ctrl.mobile.gpc import GpcPathTracker, GpcTrackerParams
 from robotica_ctrl.mobile.path import PathProjection, PolylinePath
 from robotica_ctrl.mobile.pure_pursuit import PurePursuit, PurePursuitParams
-from robotica_ctrl.mobile.quintic_tracker import (path_curvature, QuinticTracker,
+from robotica_ctrl.mobile.quintic_tracker import (path_curvature, path_heading, QuinticTracker,
                                                   QuinticTrackerParams)
 from robotica_ctrl.mobile.tracker_base import check_pose
 from robotica_ctrl.mobile.trajectory_tracking import (LAWS as TRAJECTORY_LAWS,
@@ -50,7 +50,7 @@ from robotica_ctrl.mobile.trajectory_tracking import (LAWS as TRAJECTORY_LAWS,
                                                       TrajectoryTrackingParams)
 
 __all__ = ['LAWS', 'LAW_PARAMETERS', 'LawParameter', 'TimedPath', 'TrackerOutput',
-           'TrackingLaw', 'law_defaults', 'make_law']
+           'TrackingLaw', 'law_defaults', 'make_law', 'steering_angle']
 
 LAWS = ('pure_pursuit', 'adaptive_pure_pursuit', 'quintic', 'trajectory_tracking', 'frenet',
         'gpc')
@@ -467,10 +467,7 @@ class TimedPath:
             theta = float(np.interp(t, times, self._theta))
             omega = float(self._theta[i + 1] - self._theta[i]) / dt if moving else 0.0
             return PostureReference(float(point[0]), float(point[1]), theta, v, omega)
-        a = self.path.point_at(s - self.spacing)
-        b = self.path.point_at(s + self.spacing)
-        theta = math.atan2(float(b[1] - a[1]), float(b[0] - a[0])) if np.any(a != b) else \
-            self.path.heading_at(s)
+        theta = path_heading(self.path, s, self.spacing)
         omega = v * path_curvature(self.path, s, self.spacing) if v != 0.0 else 0.0
         return PostureReference(float(point[0]), float(point[1]), theta, v, omega)
 
@@ -527,6 +524,20 @@ def _params(params_type: Any, gains: Mapping[str, Any]) -> Any:
     names = {field.name for field in fields(params_type)}
     return params_type(**{_FIELD.get(name, name): value for name, value in gains.items()
                           if _FIELD.get(name, name) in names})
+
+
+def steering_angle(linear: float, angular: float, wheelbase: float) -> float:
+    """
+    Return the steering angle α = atan(l ω / v) [rad] of a law's (v, ω) for a steered vehicle.
+
+    Book (4.119), (4.121), l = ``wheelbase`` [m]. Stopped (v = 0) the wheel keeps straight:
+    unlike :func:`robotica_kin.mobile.bicycle.bicycle_inverse`, which refuses a turn on the
+    spot, a controller's command must never fail.
+
+    >>> round(math.degrees(steering_angle(1.0, 1.0, 1.5)), 2)   # Ej. 4.8
+    56.31
+    """
+    return math.atan(wheelbase * angular / linear) if linear != 0.0 else 0.0
 
 
 def _law_specs(law: str) -> dict[str, LawParameter]:

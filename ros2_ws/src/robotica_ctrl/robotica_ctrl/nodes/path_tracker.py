@@ -38,7 +38,8 @@ from rclpy.experimental import EventsExecutor
 from rclpy.node import Node
 from robotica_ctrl.mobile.open_loop import OpenLoopProfile
 from robotica_ctrl.mobile.path import PolylinePath
-from robotica_ctrl.mobile.tracking_laws import LAW_PARAMETERS, LAWS, make_law, TrackingLaw
+from robotica_ctrl.mobile.tracking_laws import (LAW_PARAMETERS, LAWS, make_law,
+                                                steering_angle, TrackingLaw)
 from robotica_kin.nodes.convert import path_points, pose2d_from_odometry, stamp_to_seconds
 from robotica_kin.nodes.entry_point import run_node
 from robotica_kin.nodes.parameters import declare
@@ -221,9 +222,8 @@ class PathTrackerNode(Node):
             twist.angular.z = angular
             self._cmd_pub.publish(twist)
             return
-        # α = atan(l γ) with γ = ω / v; stopped (v = 0), the wheel keeps straight.
-        steering = math.atan(self._wheelbase * angular / linear) if linear != 0.0 else 0.0
-        self._cmd_pub.publish(VehicleCommand(speed=linear, steering_angle=steering))
+        self._cmd_pub.publish(VehicleCommand(
+            speed=linear, steering_angle=steering_angle(linear, angular, self._wheelbase)))
 
     def _control(self, msg: Odometry) -> None:
         time = stamp_to_seconds(msg.header.stamp)

@@ -12,13 +12,13 @@ seconds for subscribers to match before it starts, shows its progress on stderr 
 0 at the end, 1 for a bag it cannot read, 2 for bad arguments, 130 on Ctrl-C.
 """
 import argparse
-import importlib
 from pathlib import Path
 import sys
 import time
 
 from robotica_sim.bag_info import BagError
 from robotica_sim.bag_player import open_playback, parse_remaps, wall_time
+from robotica_sim.bag_types import message_class
 
 HELP = 'republish a bag in time order with /clock'
 EPILOG = """examples:
@@ -41,11 +41,6 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument('--wait', type=float, default=1.0,
                         help='seconds to wait for subscribers to match before the start')
     parser.add_argument('--quiet', action='store_true', help='no progress on stderr')
-
-
-def _message_class(msgtype: str):
-    package, kind, name = msgtype.split('/')
-    return getattr(importlib.import_module(f'{package}.{kind}'), name)
 
 
 def main(args: argparse.Namespace) -> int:
@@ -72,7 +67,7 @@ def main(args: argparse.Namespace) -> int:
         publishers = {}
         for topic in playback.topics.values():
             try:
-                msg_class = _message_class(topic.msgtype)
+                msg_class = message_class(topic.msgtype)
             except (ImportError, AttributeError, ValueError):
                 print(f'robotica play: skipping {topic.name}: type {topic.msgtype} is not '
                       'installed', file=sys.stderr)

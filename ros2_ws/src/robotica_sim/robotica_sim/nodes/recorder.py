@@ -13,7 +13,6 @@ Service ``~/ready`` (std_srvs/Trigger) answers success once every requested topi
 and matched to a publisher. On SIGINT/SIGTERM the node drains what DDS already delivered, then
 closes the bag.
 """
-import importlib
 from pathlib import Path
 import shutil
 import signal
@@ -26,7 +25,7 @@ from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
 from rclpy.signals import SignalHandlerOptions
 from robotica_kin.nodes.entry_point import run_node
 from robotica_kin.nodes.parameters import declare
-from robotica_sim.bag_types import ensure_type, jazzy_typestore
+from robotica_sim.bag_types import ensure_type, jazzy_typestore, message_class
 from rosbags.rosbag2 import StoragePlugin, Writer
 from std_srvs.srv import Trigger
 
@@ -94,8 +93,7 @@ class RecorderNode(Node):
     def _subscribe(self, topic: str, msgtype: str, publishers: list) -> None:
         try:
             ensure_type(self._typestore, msgtype)
-            pkg, kind, name = msgtype.split('/')
-            msg_class = getattr(importlib.import_module(f'{pkg}.{kind}'), name)
+            msg_class = message_class(msgtype)
         except (KeyError, AttributeError, ModuleNotFoundError, ValueError) as err:
             self.get_logger().warn(f'cannot record {topic}: {err}', throttle_duration_sec=30.0)
             return
