@@ -27,6 +27,7 @@ EPILOG = """examples:
   robotica play BAG --topics /odom /ground_truth/odom --remap /odom:=/replayed/odom
 """
 PROGRESS_PERIOD = 1.0   # [s] wall clock between progress lines
+ACK_TIMEOUT = 2.0       # [s] longest wait per topic for the subscribers' acknowledgements
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -116,6 +117,11 @@ def _play(playback, publishers: dict, clock, args: argparse.Namespace) -> int:
     except BagError as err:
         print(f'robotica play: {err} after {count} messages', file=sys.stderr)
         return 1
+    # Reliable samples still in flight are lost if the publisher goes away before the
+    # subscribers acknowledge them (a round trip lost the bag's last message that way).
+    from rclpy.duration import Duration
+    for publisher in publishers.values():
+        publisher.wait_for_all_acked(Duration(seconds=ACK_TIMEOUT))
     if not args.quiet:
         print(f'robotica play: done, {count} messages of {len(publishers)} topics in '
               f'{time.monotonic() - wall_start:.2f} s', file=sys.stderr)
