@@ -40,6 +40,7 @@ EPILOG = """examples:
 """
 MATCH_SETTLE = 0.5   # [s] wall clock, see _wait_ready
 GRAPH_WAIT = 5.0     # [s] wall clock, see _wait_for_graph
+CALL_RETRY = 2.0     # [s] wall clock, see _call
 STOP_ORDER = ['simulator', 'path_tracker', 'joint_controller', 'odometry', 'encoder_emulator',
               'gyro_emulator', 'compass_emulator', 'gps_emulator', 'path_publisher',
               'joint_trajectory_publisher', 'recorder']
@@ -113,16 +114,26 @@ def _prepare(args: argparse.Namespace, scenario, run_dir: Path) -> list[NodeSpec
 
 
 def _call(executor, client, deadline: float) -> Trigger.Response:
-    while not client.wait_for_service(timeout_sec=0.1):
-        executor.spin_once(timeout_sec=0.0)
+    """
+    Call a Trigger service, resending the request every CALL_RETRY until ``deadline``.
+
+    ``wait_for_service`` is true once the server's request reader is matched; its reply writer
+    may not be matched to our reply reader yet, and a reply sent then is lost (a CI run waited
+    30 s for /recorder/ready this way). Both services called here are idempotent.
+    """
+    while True:
+        while not client.wait_for_service(timeout_sec=0.1):
+            executor.spin_once(timeout_sec=0.0)
+            if time.monotonic() > deadline:
+                raise RunFailed(f'service {client.srv_name} did not appear')
+        future = client.call_async(Trigger.Request())
+        attempt = min(CALL_RETRY, max(0.1, deadline - time.monotonic()))
+        executor.spin_until_future_complete(future, timeout_sec=attempt)
+        if future.done():
+            return future.result()
+        client.remove_pending_request(future)
         if time.monotonic() > deadline:
-            raise RunFailed(f'service {client.srv_name} did not appear')
-    future = client.call_async(Trigger.Request())
-    remaining = max(0.1, deadline - time.monotonic())
-    executor.spin_until_future_complete(future, timeout_sec=remaining)
-    if not future.done():
-        raise RunFailed(f'service {client.srv_name} did not answer')
-    return future.result()
+            raise RunFailed(f'service {client.srv_name} did not answer')
 
 
 def _check_alive(supervisor: ProcessSupervisor, names: list[str]) -> None:
