@@ -87,8 +87,10 @@ def open_bag(path: str | Path) -> AnyReader:
         raise BagError(f'{bag}: not a bag directory (a rosbag2 bag is a directory with '
                        'metadata.yaml)')
     if not (bag / 'metadata.yaml').is_file():
-        raise BagError(f'{bag}: not a bag directory: no metadata.yaml (or its recorder was '
-                       'killed before closing it)')
+        if any(bag.glob('*.mcap')):
+            raise BagError(f'{bag}: the recorder did not close this bag (killed?): '
+                           f'`robotica bag repair {bag}` makes it readable')
+        raise BagError(f'{bag}: not a bag directory: no metadata.yaml')
     try:
         reader = AnyReader([bag])
         reader.open()

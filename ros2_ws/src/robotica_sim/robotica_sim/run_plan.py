@@ -83,6 +83,23 @@ def recorded_topics(scenario: Scenario) -> tuple[str, ...]:
     return tuple(topics)
 
 
+def followed_topics(scenario: Scenario) -> tuple[str, ...]:
+    """
+    Return the topics a lockstep vehicle simulator waits for (``lockstep.follow_topics``).
+
+    They are the per-step outputs of the nodes off its control loop: the encoder, gyro and
+    compass emulators and the odometry.
+
+    The GPS emulator is not followed: its fixes come at a few hertz, late by their latency, and
+    stop in dropouts; the odometry it feeds is followed.
+    """
+    topics = ['/wheel_encoders', '/odom']
+    topics += [topic for sensor, topic in (('gyro', '/imu/data'),
+                                           ('compass', '/compass/heading'))
+               if getattr(scenario.sensors, sensor).enabled]
+    return tuple(topics)
+
+
 def plan_run(scenario: Scenario) -> list[NodeSpec]:
     """Return the nodes of a run, in start order (the recorder is added by the caller)."""
     return _plan_arm(scenario) if scenario.is_manipulator else _plan_mobile(scenario)
@@ -264,5 +281,6 @@ def _plan_mobile(scenario: Scenario) -> list[NodeSpec]:
             'steering_time_constant': robot.steering_time_constant,
             'longitudinal_slip': robot.longitudinal_slip,
             'step_period': scenario.step_period, 'pacing': scenario.pacing,
+            'lockstep.follow_topics': list(followed_topics(scenario)),
             'end_time': scenario.duration, 'autostart': False, **pose}),
     ]

@@ -81,7 +81,8 @@ def test_parameter_values_are_plain_ros_types(demo_plan):
         for name, value in node.parameters.items():
             assert type(value) in (bool, int, float, str, list), (node.name, name, value)
             if isinstance(value, list):
-                assert value and all(type(v) is float for v in value), (node.name, name)
+                assert value and len({type(v) for v in value}) == 1, (node.name, name)
+                assert type(value[0]) in (float, str), (node.name, name)
 
 
 def test_robot_and_initial_pose_reach_simulator_and_odometry(tmp_path):
@@ -310,3 +311,17 @@ def test_every_sensor_and_a_steered_vehicle(tmp_path):
     topics = recorded_topics(scenario)
     assert '/vehicle_command' in topics and '/cmd_vel' not in topics
     assert {'/imu/data', '/compass/heading', '/compass/magnetic_field', '/gps/fix'} <= set(topics)
+
+
+def test_the_simulator_follows_the_per_step_outputs_off_its_loop(tmp_path):
+    path = write(tmp_path, """\
+        robot: {type: differential}
+        path: {shape: straight_line, start: [0, 0], end: [5, 0]}
+        sensors: {gyro: {enabled: true}, gps: {enabled: true}}
+    """)
+    nodes = {n.name: n for n in plan_run(load_scenario(path))}
+    followed = nodes['simulator'].parameters['lockstep.follow_topics']
+    assert followed == ['/wheel_encoders', '/odom', '/imu/data']   # not the few-hertz GPS
+    published = {'/wheel_encoders': 'encoder_emulator', '/odom': 'odometry',
+                 '/imu/data': 'gyro_emulator'}
+    assert all(name in nodes for name in published.values())

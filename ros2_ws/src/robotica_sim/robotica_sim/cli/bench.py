@@ -10,7 +10,9 @@ in the same run; see
 :mod:`robotica_sim.kinematics_benchmark`. ``robotica bench tracking`` runs every tracking law
 on the differential, tricycle and Ackermann vehicles along four paths, on the true pose and on
 the EKF's (encoders, compass, DGPS), and reports cross-track, heading, settling, control effort
-and the time per ``update`` call; see :mod:`robotica_sim.tracking_benchmark`.
+and the time per ``update`` call; see :mod:`robotica_sim.tracking_benchmark`. ``robotica bench
+recorder`` offers the recorder node message rates from 5 000 to 30 000 per second and counts
+what reaches its bag; see :mod:`robotica_sim.recorder_benchmark`.
 """
 import argparse
 import dataclasses
@@ -24,11 +26,12 @@ from robotica_sim.arm_benchmark import core_benchmark, loop_benchmark, round_tri
 from robotica_sim.kinematics_benchmark import BenchmarkRow, run_kinematics_benchmark
 from robotica_sim.measurement_row import MeasurementRow
 from robotica_sim.mobile_benchmark import mobile_core_benchmark
+from robotica_sim.recorder_benchmark import RATES, recorder_benchmark
 from robotica_sim.tracking_benchmark import (format_tracking_table, PATHS, plot_tracking,
                                              POSE_SOURCES, tracking_benchmark, VEHICLES)
 
-HELP = ('measure the speed of the kinematics, the arm loop or the mobile loop, or the '
-        'tracking laws (robotica bench kin|arm|mobile|tracking)')
+HELP = ('measure the speed of the kinematics, the arm loop, the mobile loop, the tracking '
+        'laws or the recorder (robotica bench kin|arm|mobile|tracking|recorder)')
 EPILOG = """examples:
   robotica bench kin                       1000 configurations per robot, Markdown table
   robotica bench kin --count 200 --json    quicker, machine-readable
@@ -39,8 +42,10 @@ EPILOG = """examples:
                                            every law x vehicle x path x pose source (about
                                            2 min on 2 cores), table and PNG figures
   robotica bench tracking --laws pure_pursuit gpc --vehicles ackermann --poses ground_truth
+  robotica bench recorder                  messages/s the recorder takes without loss
+  robotica bench recorder --rates 20000 --loop-duration 10
 """
-SUITES = ('kin', 'arm', 'mobile', 'tracking')
+SUITES = ('kin', 'arm', 'mobile', 'tracking', 'recorder')
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -48,14 +53,18 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument('suite', choices=SUITES,
                         help='what to measure: kin = kinematics, arm = the manipulator loop, '
                         'mobile = the vehicle loop with every sensor and the EKF, '
-                        'tracking = the path-tracking laws on three vehicles')
+                        'tracking = the path-tracking laws on three vehicles, '
+                        "recorder = the recorder node's throughput")
     parser.add_argument('--count', type=int, default=1000,
                         help='kin: random configurations per robot; arm: simulated steps of '
                         'the core and DDS round trips (default 1000; arm: at least 5000 steps '
                         'are used for the core)')
     parser.add_argument('--loop-duration', type=float,
                         help='arm, mobile: simulated seconds of the full ROS loop; 0 skips it '
-                        '(default 5 for arm, 60 for mobile)', default=None)
+                        '(default 5 for arm, 60 for mobile); recorder: seconds per rate '
+                        '(default 5)', default=None)
+    parser.add_argument('--rates', type=float, nargs='+', default=list(RATES), metavar='RATE',
+                        help='recorder: offered rates [messages/s]')
     parser.add_argument('--baseline-ik-count', type=int, default=100,
                         help='poses given to the slow baseline ikine (default 100)')
     parser.add_argument('--seed', type=int, default=0,
@@ -107,6 +116,8 @@ def main(args: argparse.Namespace) -> int:
         return _mobile(args, progress)
     if args.suite == 'tracking':
         return _tracking(args, progress)
+    if args.suite == 'recorder':
+        return _recorder(args, progress)
     rows = run_kinematics_benchmark(args.count, args.baseline_ik_count, args.seed, progress)
     if args.json:
         print(json.dumps([dataclasses.asdict(row) for row in rows], indent=2))
@@ -147,6 +158,20 @@ def _mobile(args: argparse.Namespace, progress) -> int:
         progress(f'full ROS loop, {duration:g} s simulated')
         rows += loop_benchmark(duration, 'figure_eight_differential',
                                '8 node processes (simulator, 4 sensors, odometry, tracker, path)')
+    return _print_rows(args, rows)
+
+
+def _recorder(args: argparse.Namespace, progress) -> int:
+    seconds = _loop_duration(args, 5.0)
+    if seconds is None or seconds == 0.0 or min(args.rates) <= 0.0:
+        print('robotica bench: recorder needs --loop-duration > 0 and --rates > 0',
+              file=sys.stderr)
+        return 2
+    try:
+        rows = recorder_benchmark(tuple(args.rates), seconds, progress)
+    except RuntimeError as err:
+        print(f'robotica bench: recorder: {err}', file=sys.stderr)
+        return 1
     return _print_rows(args, rows)
 
 

@@ -100,10 +100,16 @@ def _prepare(args: argparse.Namespace, scenario, run_dir: Path) -> list[NodeSpec
     bag = run_dir / 'bag'
     scenario_copy = run_dir / 'scenario.yaml'
     params_file = run_dir / 'params.yaml'
+    run_file = run_dir / 'run.yaml'
     shutil.copy(scenario.source, scenario_copy)
+    run_file.write_text(yaml.safe_dump({
+        'scenario': scenario.name, 'seed': scenario.seed, 'pacing': scenario.pacing,
+        'duration': scenario.duration, 'domain_id': int(os.environ['ROS_DOMAIN_ID']),
+        'scenario_file': str(scenario.source),
+        'started': time.strftime('%Y-%m-%dT%H:%M:%S%z')}, sort_keys=False))
     recorder = NodeSpec('robotica_sim', 'recorder', 'recorder', {
         'output': str(bag), 'topics': list(recorded_topics(scenario)),
-        'metadata_files': [str(scenario_copy), str(params_file)]})
+        'metadata_files': [str(scenario_copy), str(params_file), str(run_file)]})
     nodes = [recorder] + nodes
     params = {}
     for spec in nodes:

@@ -1,13 +1,20 @@
 """
-Recorder node: every topic of a run, serialized, into a rosbag2 directory (MCAP).
+Recorder node: every topic of a run, serialized, into a crash-safe rosbag2 directory (MCAP).
 
 Subscribes to the topics named in ``topics`` (or, when empty, to every topic it discovers)
-with ``raw=True``, so messages are written as received (CDR) by ``rosbags`` into
-``output/`` (``metadata.yaml`` + ``.mcap``), readable by ``rosbags``, ``mcap`` and rosbag2.
-Each topic's QoS follows what its publishers offer, as rosbag2 does (best effort and
-transient-local only when every publisher offers them). Files named in ``metadata_files`` (the
-run's scenario and parameters) are copied into the bag directory and stored in its metadata
-(``custom_data``).
+with ``raw=True``, so messages are written as received (CDR) by
+:class:`robotica_sim.bag_writer.BagWriter` into ``output/`` (``metadata.yaml`` + ``.mcap``
+files), readable by ``rosbags``, ``mcap`` and rosbag2. Each topic's QoS follows what its
+publishers offer, as rosbag2 does (best effort and transient-local only when every publisher
+offers them); the offered profiles and the type hash are stored with the topic. Files named in
+``metadata_files`` (the run's scenario and parameters) are copied into the bag directory and,
+with the versions of the software (``robotica.versions``), stored in its ``custom_data``.
+Messages that DDS reports lost before they reached the recorder are logged and counted in
+``robotica.messages_lost``.
+
+Crash safety: what was received is written to disk every ``flush_period`` s; after a SIGKILL,
+``robotica bag repair`` makes the bag readable up to then. ``max_bag_size`` and
+``max_bag_duration`` split the bag into several files.
 
 Service ``~/ready`` (std_srvs/Trigger) answers success once every requested topic is subscribed
 and matched to a publisher. On SIGINT/SIGTERM the node drains what DDS already delivered, then
@@ -19,17 +26,21 @@ import signal
 import time
 
 from rclpy.clock import Clock, ClockType
+from rclpy.event_handler import QoSMessageLostInfo, SubscriptionEventCallbacks
 from rclpy.experimental import EventsExecutor
 from rclpy.node import Node
 from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
 from rclpy.signals import SignalHandlerOptions
 from robotica_kin.nodes.entry_point import run_node
 from robotica_kin.nodes.parameters import declare
+from robotica_sim.bag_metadata import qos_to_dict
 from robotica_sim.bag_types import ensure_type, jazzy_typestore, message_class
-from rosbags.rosbag2 import StoragePlugin, Writer
+from robotica_sim.bag_writer import BagWriter, COMPRESSION
+from robotica_sim.software_versions import software_versions
 from std_srvs.srv import Trigger
+import yaml
 
-STORAGE = {'mcap': StoragePlugin.MCAP, 'sqlite3': StoragePlugin.SQLITE3}
+SUBSCRIPTION_DEPTH = 1000   # messages a topic may fall behind before DDS drops the oldest
 QUIET_PERIOD = 0.3   # [s] wall clock without messages that ends the drain at shutdown
 DRAIN_LIMIT = 5.0    # [s] wall clock, the longest drain
 
@@ -45,8 +56,19 @@ class RecorderNode(Node):
                                     'Topics to record; [""] or []: every topic discovered',
                                     read_only=True))
         self._topics = [t for t in self._topics if t]
-        storage = declare(self, 'storage_id', 'mcap', f'Storage: one of {sorted(STORAGE)}',
-                          read_only=True)
+        compression = declare(self, 'compression', 'zstd',
+                              f'MCAP chunk compression: one of {sorted(COMPRESSION)}',
+                              read_only=True)
+        max_size = declare(self, 'max_bag_size', 0,
+                           'Start a new file at this size [bytes]; 0: one file', low=0, high=2**62,
+                           read_only=True)
+        max_duration = declare(self, 'max_bag_duration', 0.0,
+                               'Start a new file after this much receive time [s]; 0: one file',
+                               low=0.0, high=1e7, read_only=True)
+        flush_period = declare(self, 'flush_period', 1.0,
+                               'Longest time a received message stays in memory only [s, wall '
+                               'clock]: what a SIGKILL can lose', low=0.01, high=60.0,
+                               read_only=True)
         files = [f for f in declare(self, 'metadata_files', [''],
                                     'Files copied into the bag and its custom_data',
                                     read_only=True) if f]
@@ -55,27 +77,33 @@ class RecorderNode(Node):
                          low=0.01, high=10.0, read_only=True)
         if not output:
             raise ValueError('parameter output (the bag directory) is required')
-        if storage not in STORAGE:
-            raise ValueError(f'storage_id must be one of {sorted(STORAGE)}, got {storage!r}')
+        if compression not in COMPRESSION:
+            raise ValueError(f'compression must be one of {sorted(COMPRESSION)}, '
+                             f'got {compression!r}')
         if Path(output).exists():
             raise ValueError(f'bag directory {output} exists already')
         for f in files:
             if not Path(f).is_file():
                 raise ValueError(f'metadata file {f} does not exist')
+        custom = {'robotica.' + Path(f).name: Path(f).read_text() for f in files}
+        custom['robotica.versions'] = yaml.safe_dump(software_versions(), sort_keys=False)
         self._typestore = jazzy_typestore()
-        self._writer = Writer(output, version=9, storage_plugin=STORAGE[storage])
-        for f in files:
-            self._writer.set_custom_data('robotica.' + Path(f).name, Path(f).read_text())
-        self._writer.open()
+        self._writer = BagWriter(output, compression=compression, max_bag_size=max_size,
+                                 max_bag_duration=max_duration, flush_period=flush_period,
+                                 custom_data=custom)
         for f in files:
             shutil.copy(f, Path(output) / Path(f).name)
+        self._lost: dict[str, int] = {}
+        # Wall-clock timer: the chunk in progress reaches the disk even when no message comes.
+        wall = Clock(clock_type=ClockType.STEADY_TIME)
+        self.create_timer(flush_period, self._writer.flush, clock=wall)
         self._output = output
         self._recorded = {}
         self._count = 0
         self._last_message = time.monotonic()
         self.create_service(Trigger, '~/ready', self._on_ready)
         # Wall-clock timer: discovery goes on even before any /clock arrives.
-        self.create_timer(period, self._discover, clock=Clock(clock_type=ClockType.STEADY_TIME))
+        self.create_timer(period, self._discover, clock=wall)
         self.get_logger().info(f'recording into {output}: '
                                f'{", ".join(self._topics) if self._topics else "all topics"}')
 
@@ -101,25 +129,41 @@ class RecorderNode(Node):
         rihs01 = str(publishers[0].topic_type_hash)
         if not rihs01.startswith('RIHS01_'):
             rihs01 = self._typestore.hash_rihs01(msgtype)
-        connection = self._writer.add_connection(topic, msgtype, msgdef=msgdef, rihs01=rihs01)
+        index = self._writer.add_topic(topic, msgtype, msgdef, rihs01,
+                                       [qos_to_dict(p.qos_profile) for p in publishers])
         best_effort = all(p.qos_profile.reliability == ReliabilityPolicy.BEST_EFFORT
                           for p in publishers)
         latched = all(p.qos_profile.durability == DurabilityPolicy.TRANSIENT_LOCAL
                       for p in publishers)
         qos = QoSProfile(
-            depth=1000,
+            depth=SUBSCRIPTION_DEPTH,
             reliability=ReliabilityPolicy.BEST_EFFORT if best_effort
             else ReliabilityPolicy.RELIABLE,
             durability=DurabilityPolicy.TRANSIENT_LOCAL if latched
             else DurabilityPolicy.VOLATILE)
+        writer = self._writer
+        now = self._receive_time
 
-        def write(data: bytes, connection=connection) -> None:
-            self._writer.write(connection, self.get_clock().now().nanoseconds, data)
+        def write(data: bytes) -> None:
+            writer.write(index, now(), data)
             self._count += 1
             self._last_message = time.monotonic()
 
-        self._recorded[topic] = self.create_subscription(msg_class, topic, write, qos, raw=True)
+        def lost(info: QoSMessageLostInfo) -> None:
+            self._lost[topic] = int(info.total_count)
+            self.get_logger().warn(f'{topic}: {info.total_count} messages lost before they '
+                                   'reached the recorder', throttle_duration_sec=1.0)
+
+        self._recorded[topic] = self.create_subscription(
+            msg_class, topic, write, qos, raw=True,
+            event_callbacks=SubscriptionEventCallbacks(message_lost=lost))
         self.get_logger().info(f'recording {topic} [{msgtype}]')
+
+    def _receive_time(self) -> int:
+        """Return the receive time [ns]: simulated with use_sim_time, else the system clock."""
+        if self.get_clock().ros_time_is_active:
+            return self.get_clock().now().nanoseconds
+        return time.time_ns()   # 0.1 µs instead of 3.5 µs for Clock.now() at 20 000 msg/s
 
     def _on_ready(self, request: Trigger.Request, response: Trigger.Response
                   ) -> Trigger.Response:
@@ -138,8 +182,13 @@ class RecorderNode(Node):
         while (time.monotonic() - self._last_message < QUIET_PERIOD
                and time.monotonic() < deadline):
             executor.spin_once(timeout_sec=0.05)
-        self._writer.close()
-        self.get_logger().info(f'closed {self._output}: {self._count} messages')
+        if self._lost:
+            self._writer.custom_data['robotica.messages_lost'] = yaml.safe_dump(self._lost)
+        information = self._writer.close()
+        self.get_logger().info(f'closed {self._output}: {self._count} messages in '
+                               f'{len(information["files"])} file(s)'
+                               + (f', lost before recording: {self._lost}' if self._lost
+                                  else ''))
 
 
 def _record(node: RecorderNode, executor) -> int:

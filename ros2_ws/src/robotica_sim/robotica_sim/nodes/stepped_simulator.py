@@ -14,24 +14,46 @@ Pacing (DESIGN.md, time and recording):
   ``lockstep.timeout`` wall-clock seconds (counted in ``lockstep_timeouts`` and logged). Until the
   first answer, step 0 is published again every ``lockstep.timeout`` (discovery of the control loop
   may still be going on), for at most ``lockstep.start_timeout``; then the node gives up.
+  Nodes off that loop (sensor emulators, odometry) are held to it through
+  ``lockstep.follow_topics``: a step waits (at most ``lockstep.timeout``, counted in
+  ``lockstep_timeouts``) while the newest header stamp on one of these topics is more than
+  ``lockstep.max_lag`` simulated seconds behind the last step published. Without this, a
+  lockstep loop outran them on a loaded machine and their input queues overflowed: a run lost up
+  to a third of its ``/odom`` and ``/wheel_encoders`` messages, and its bag with them. A followed
+  topic counts once a publisher of it is matched.
 
 At ``end_time`` the node publishes a final status and exits with code 0.
 """
 from abc import abstractmethod
 import math
+import struct
 import time
 
+from rclpy.clock import Clock as WallClock, ClockType
 from rclpy.duration import Duration
 from rclpy.executors import Executor
 from rclpy.node import Node
 from robotica_kin.nodes.convert import seconds_to_stamp
 from robotica_kin.nodes.parameters import declare
-from robotica_kin.nodes.qos import STREAM_PUB_QOS
+from robotica_kin.nodes.qos import STREAM_PUB_QOS, STREAM_SUB_QOS
 from robotica_msgs.msg import SimulatorStatus
+from robotica_sim.bag_types import message_class
 from rosgraph_msgs.msg import Clock
 from std_srvs.srv import Trigger
 
 PACING_MODES = ('realtime', 'lockstep')
+FOLLOW_DISCOVERY_PERIOD = 0.1   # [s, wall clock] search for the followed topics' types
+
+
+def header_stamp(data: bytes) -> float:
+    """
+    Return the header stamp [s] of a serialized message whose first field is a std_msgs/Header.
+
+    ``data`` is CDR with its 4-byte encapsulation header (byte 1: 1 little-, 0 big-endian); the
+    stamp's ``int32 sec`` and ``uint32 nanosec`` follow it.
+    """
+    sec, nanosec = struct.unpack_from('<iI' if data[1] == 1 else '>iI', data, 4)
+    return sec + nanosec * 1e-9
 
 
 class SteppedSimulatorNode(Node):
@@ -64,6 +86,19 @@ class SteppedSimulatorNode(Node):
         self._status_period = declare(self, 'status_period', 1.0,
                                       'Period of ~/status [s, simulated]', low=1e-3, high=1e3,
                                       read_only=True)
+        self._follow_topics = [t for t in declare(
+            self, 'lockstep.follow_topics', [''],
+            'Topics (stamped messages) of nodes off the control loop that each lockstep step '
+            'waits for; [""]: none', read_only=True) if t]
+        self._max_lag = declare(self, 'lockstep.max_lag', 0.5,
+                                'Simulated seconds a followed topic may lag behind the steps',
+                                low=0.0, high=60.0, read_only=True)
+        self._followed: dict[str, float] = {}   # topic -> newest header stamp [s]
+        self._follow_subscriptions: dict = {}
+        if self._follow_topics:
+            self._follow_timer = self.create_timer(
+                FOLLOW_DISCOVERY_PERIOD, self._subscribe_followed,
+                clock=WallClock(clock_type=ClockType.STEADY_TIME))
         self._command_topic = command_topic
         self._clock_pub = self.create_publisher(Clock, '/clock', STREAM_PUB_QOS)
         self._status_pub = self.create_publisher(SimulatorStatus, '~/status', STREAM_PUB_QOS)
@@ -98,6 +133,34 @@ class SteppedSimulatorNode(Node):
     def publishers_to_flush(self) -> list:
         """Return the publishers whose last messages must be acknowledged before exiting."""
         return [self._clock_pub, self._status_pub]
+
+    # -- followed topics ----------------------------------------------------------------------
+    def _subscribe_followed(self) -> None:
+        types = dict(self.get_topic_names_and_types())
+        for topic in self._follow_topics:
+            if topic in self._follow_subscriptions or topic not in types:
+                continue
+            try:
+                msg_class = message_class(types[topic][0])
+            except (AttributeError, ModuleNotFoundError, ValueError) as err:
+                self.get_logger().error(f'cannot follow {topic}: {err}')
+                self._follow_subscriptions[topic] = None
+                continue
+
+            def newest(data: bytes, topic: str = topic) -> None:
+                self._followed[topic] = max(self._followed[topic], header_stamp(data))
+            self._followed[topic] = 0.0
+            self._follow_subscriptions[topic] = self.create_subscription(
+                msg_class, topic, newest, STREAM_SUB_QOS, raw=True)
+        if len(self._follow_subscriptions) == len(self._follow_topics):
+            self._follow_timer.cancel()
+
+    def _lagging(self, lag: float | None = None) -> list[str]:
+        """Return the followed topics more than ``lag`` (default max_lag) behind the steps."""
+        oldest = self.sim_time - self.step_period - (
+            self._max_lag if lag is None else lag) - 1e-9
+        return [t for t, stamp in self._followed.items() if stamp < oldest
+                and self._follow_subscriptions[t].get_publisher_count() > 0]
 
     # -- callbacks ----------------------------------------------------------------------------
     def _on_start(self, request: Trigger.Request, response: Trigger.Response
@@ -173,12 +236,18 @@ class SteppedSimulatorNode(Node):
             self._publish_state()
             if lockstep:
                 deadline = time.monotonic() + self._lockstep_timeout
-                if not self._spin_until(executor, lambda: self._answers > seen, deadline):
+                if not self._spin_until(executor, lambda: self._answers > seen
+                                        and not self._lagging(), deadline):
                     self._timeouts += 1
+                    lagging = self._lagging()
                     self.get_logger().warn(
-                        f'lockstep: no answer to step {self._steps} within '
-                        f'{self._lockstep_timeout} s ({self._timeouts} so far)',
+                        f'lockstep: step {self._steps} went on after {self._lockstep_timeout} '
+                        's without ' + (f'{", ".join(lagging)} catching up' if lagging
+                                        else 'an answer') + f' ({self._timeouts} so far)',
                         throttle_duration_sec=1.0)
+        if lockstep:   # the followers' answers to the last steps belong to the run
+            self._spin_until(executor, lambda: not self._lagging(lag=0.0),
+                             time.monotonic() + self._lockstep_timeout)
         self._publish_status(finished=True)
         for pub in self.publishers_to_flush:
             pub.wait_for_all_acked(Duration(seconds=2.0))

@@ -1,0 +1,42 @@
+"""
+Maintain recorded bags: ``robotica bag repair BAG``.
+
+``repair`` makes a bag readable again after its recorder was killed (SIGKILL, power cut, a
+crash) before it closed the bag: every complete message is kept, the files are finished, and
+``metadata.yaml`` is rebuilt from them (the originals are kept as ``*.mcap.broken``). See
+:mod:`robotica_sim.bag_repair`.
+"""
+import argparse
+from pathlib import Path
+import sys
+
+from robotica_sim.bag_repair import repair_bag, RepairError
+
+HELP = 'repair a bag whose recorder was killed (robotica bag repair BAG)'
+EPILOG = """examples:
+  robotica bag repair runs/demo-20261123-101500/bag
+"""
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    """Add the arguments of ``robotica bag``."""
+    actions = parser.add_subparsers(dest='action', required=True, metavar='ACTION')
+    repair = actions.add_parser('repair', help="rebuild a killed recorder's bag",
+                                description=__doc__,
+                                formatter_class=argparse.RawDescriptionHelpFormatter)
+    repair.add_argument('bag', type=Path, help="bag directory (the recorder's output)")
+
+
+def main(args: argparse.Namespace) -> int:
+    """Run the action; return the exit code."""
+    try:
+        report = repair_bag(args.bag)
+    except (RepairError, OSError) as err:
+        print(f'robotica bag repair: {err}', file=sys.stderr)
+        return 1
+    for f in report.files:
+        state = 'complete' if f.complete else f'cut short ({f.stopped_at})'
+        print(f'{f.name}: {f.messages} messages kept, {state}')
+    print(f'{report.bag}: {report.messages} messages of {len(report.topics)} topics; '
+          'metadata.yaml rebuilt')
+    return 0
