@@ -13,11 +13,13 @@ End-to-end: the path- and trajectory-tracking examples of book ch. 9, run and re
   reach the path and stay on it; the Romeo 4R's short look-ahead overshoots the path first, as
   the book reports.
 """
+import json
 import math
+import subprocess
 
 import numpy as np
 import pytest
-from test_mobile_runs import angle_difference, pose, run, stamp
+from test_mobile_runs import angle_difference, pose, run, SCENARIOS, stamp
 
 pytestmark = [pytest.mark.slow, pytest.mark.ros]
 
@@ -108,3 +110,22 @@ def test_steered_vehicles_reach_the_path_under_pure_pursuit(tmp_path, name, over
     assert np.abs(errors[-len(errors) // 4:]).max() < 0.01    # on the path for the last quarter
     opposite = np.sign(errors) == -np.sign(errors[0])
     assert bool((errors[opposite] ** 2).max(initial=0.0) > 0.05 ** 2) is overshoots
+
+
+def test_a_good_run_passes_its_rubric_and_a_cut_short_one_fails(tmp_path):
+    """Ej. 9.1 graded by its shipped rubric: the full run passes; 3 s of it complete 0.2 < 0.6."""
+    grades = {}
+    for name, options in (('good', ()), ('bad', ('--duration', '3'))):
+        run_dir = tmp_path / name
+        proc = subprocess.run(['robotica', 'run', str(SCENARIOS / 'ej9_1.yaml'), '--output-dir',
+                               str(run_dir), '--quiet', *options],
+                              capture_output=True, text=True, timeout=900)
+        assert proc.returncode == 0, proc.stderr
+        graded = subprocess.run(['robotica', 'grade', str(run_dir / 'bag'), '--rubric', 'ej9_1',
+                                 '--json', str(tmp_path / f'{name}.json')],
+                                capture_output=True, text=True, timeout=300)
+        grades[name] = (graded.returncode, json.loads((tmp_path / f'{name}.json').read_text()))
+    assert grades['good'][0] == 0 and grades['bad'][0] == 1
+    assert 'Traceback' not in json.dumps(grades)
+    good, bad = json.dumps(grades['good'][1]), json.dumps(grades['bad'][1])
+    assert '"completion"' in good and '"completion"' in bad

@@ -7,9 +7,10 @@ import argparse
 import sys
 from typing import Optional
 
-from robotica_sim.cli import bag, bench, grade, info, play, run
+from robotica_sim.cli import bag, bench, grade, info, play, report, run
 
-VERBS = {'run': run, 'info': info, 'play': play, 'grade': grade, 'bag': bag, 'bench': bench}
+VERBS = {'run': run, 'info': info, 'play': play, 'grade': grade, 'report': report, 'bag': bag,
+         'bench': bench}
 
 
 def build_parser() -> argparse.ArgumentParser:

@@ -1,0 +1,79 @@
+"""
+Draw a recorded run: PNG figures and an HTML page that ties them together.
+
+Reads a rosbag2 directory as ``robotica run`` writes it and draws what its topics allow. A
+mobile robot: the path, the true trajectory and the /odom estimate in the x-y plane with the
+robot drawn at intervals; the tracking errors; the commands; the estimation error of /odom with
+its ±3σ band; the gyro, compass and GPS readings against the truth with their error histograms.
+A manipulator: joint positions and velocities against the references, torques and position
+errors, one panel per joint. ``index.html`` shows the scenario, the bag's topics and every
+figure with a caption.
+
+The report goes to --output, by default ``<run>/report`` when the bag directory is named
+``bag`` (``runs/<run>/bag``, as ``robotica run`` writes it), else ``<bag>_report`` beside the
+bag. Exit codes: 0 written; 1 not a bag, a truncated bag or nothing to plot; 2 bad arguments or
+an output directory that cannot be written.
+"""
+import argparse
+from pathlib import Path
+import sys
+import time
+
+from robotica_sim.bag_info import BagError
+from robotica_sim.run_report import default_output, ReportError, write_report
+from robotica_sim.run_series import load_run
+
+HELP = 'draw a recorded run: PNG figures and an HTML page'
+EPILOG = """examples:
+  robotica report runs/demo-20261123-101500/bag
+                       writes runs/demo-20261123-101500/report/index.html and its PNGs
+  robotica report my_bag --output /tmp/my_report --robot-every 2
+"""
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    """Add the arguments of ``robotica report``."""
+    parser.add_argument('bag', type=Path, help='bag directory (with metadata.yaml)')
+    parser.add_argument('--output', '-o', type=Path, metavar='DIR',
+                        help='directory of the report (created; files of the same names are '
+                        'replaced); default <run>/report for runs/<run>/bag, else <bag>_report')
+    parser.add_argument('--robot-every', type=float, metavar='SECONDS',
+                        help='period [s] of simulated time at which the robot is drawn on the '
+                        'trajectory; default: 0.5, 1, 2, 5, 10 ... s, the shortest that draws '
+                        'at most 15 intervals')
+    parser.add_argument('--quiet', action='store_true', help='no progress on stderr')
+
+
+def main(args: argparse.Namespace) -> int:
+    """Write the report of the bag; return the exit code."""
+    if args.robot_every is not None and not args.robot_every > 0.0:
+        print(f'robotica report: --robot-every must be > 0 s, got {args.robot_every:g}',
+              file=sys.stderr)
+        return 2
+    show = not args.quiet and sys.stderr.isatty()
+
+    def progress(message: str) -> None:
+        if show:
+            print(f'robotica report: {message}', file=sys.stderr, flush=True)
+
+    start = time.perf_counter()
+    output = args.output if args.output is not None else default_output(args.bag)
+    progress(f'reading {args.bag}')
+    try:
+        run = load_run(args.bag)
+    except BagError as err:
+        print(f'robotica report: {err}', file=sys.stderr)
+        return 1
+    try:
+        report = write_report(run, output, args.robot_every, progress)
+    except (ReportError, ValueError) as err:
+        print(f'robotica report: {err}', file=sys.stderr)
+        return 1
+    except OSError as err:
+        print(f'robotica report: cannot write the report into {output}: '
+              f'{err.strerror or err}', file=sys.stderr)
+        return 2
+    progress(f'done in {time.perf_counter() - start:.1f} s')
+    print(f'{report.index} ({len(report.figures)} figures: '
+          f'{", ".join(f.path.name for f in report.figures)})')
+    return 0
