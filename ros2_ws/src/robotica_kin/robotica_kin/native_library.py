@@ -3,8 +3,8 @@ robotica's compiled inner loops (package ``robotica_native``), loaded with ctype
 
 One shared library on Pinocchio's C++ API with a plain C interface: ``rik_*`` is the search of
 :mod:`robotica_kin.ik` (ik_search.cpp), ``ras_*`` the RK4 step of
-:mod:`robotica_sim.arm_simulation` (arm_step.cpp). The callers validate every input; the
-functions here only load the library and describe its signatures.
+:mod:`robotica_sim.arm_simulation` with its joint stops (arm_step.cpp). The callers validate
+every input; the functions here only load the library and describe its signatures.
 """
 
 import ctypes
@@ -47,7 +47,8 @@ def native_library() -> ctypes.CDLL:
     lib.rik_solve.argtypes = [pointer, long, pointer, pointer, pointer, double, long, long,
                               ctypes.c_uint64, pointer, text, long]
     lib.ras_arm_new.restype = pointer
-    lib.ras_arm_new.argtypes = [text, pointer, pointer, pointer, pointer, text, long]
+    lib.ras_arm_new.argtypes = [text, pointer, pointer, pointer, pointer, pointer, pointer,
+                                text, long]
     lib.ras_arm_free.restype = None
     lib.ras_arm_free.argtypes = [pointer]
     lib.ras_arm_step.restype = long

@@ -12,10 +12,10 @@ at some instant (Ej. 8.4) is added to the last link's inertia with
 hold the joints).
 
 The state is owned here; time is a step counter times ``step_period`` (no clock is read). The
-RK4 step itself runs compiled (package ``robotica_native``, arm_step.cpp: four ABA calls of
-Pinocchio's C++ API with the friction law, one ctypes call per step) on the same Pinocchio
-model, passed through Pinocchio's serialisation; this module validates the input, saturates the
-torque and applies the joint stops.
+RK4 step and the joint stops run compiled (package ``robotica_native``, arm_step.cpp: four ABA
+calls of Pinocchio's C++ API with the friction law, one ctypes call per step) on the same
+Pinocchio model, passed through Pinocchio's serialisation; this module validates the input and
+saturates the torque.
 """
 
 import ctypes
@@ -97,7 +97,10 @@ class ArmSimulation:
         set_gravity(self._model, params.gravity)
         self._tau_max = np.array(params.tau_max) if params.tau_max else np.full(n, np.inf)
         self._saturates = bool(np.isfinite(self._tau_max).any())
-        self._low, self._high = robot.qlim[:, 0].copy(), robot.qlim[:, 1].copy()
+        unlimited = np.full(n, np.inf)
+        self._limits = ([np.ascontiguousarray(robot.qlim[:, 0], dtype=np.float64),
+                         np.ascontiguousarray(robot.qlim[:, 1], dtype=np.float64)]
+                        if params.respect_limits else [-unlimited, unlimited])
         friction = JointFriction(robot)
         unmodelled = np.array(params.unmodelled_viscous) if params.unmodelled_viscous else 0.0
         self._friction = [np.ascontiguousarray(friction.viscous + unmodelled, dtype=np.float64),
@@ -109,6 +112,7 @@ class ArmSimulation:
         self._buffers = np.zeros((3, n))          # q, q', tau
         self._addresses = [address(row) for row in self._buffers]
         self._native = 0
+        self._native_step = native_library().ras_arm_step
         self._free_native: weakref.finalize | None = None
         self._load_native_model()
         self.reset(q0, qd0)
@@ -118,9 +122,11 @@ class ArmSimulation:
         lib = native_library()
         gravity = np.ascontiguousarray(self.params.gravity, dtype=np.float64)
         viscous, coulomb_positive, coulomb_negative = self._friction
+        lower, upper = self._limits
         handle = lib.ras_arm_new(self._model.saveToString().encode(), address(gravity),
                                  address(viscous), address(coulomb_positive),
-                                 address(coulomb_negative), self._error, ERROR_SIZE)
+                                 address(coulomb_negative), address(lower), address(upper),
+                                 self._error, ERROR_SIZE)
         if not handle:
             raise RuntimeError(f'robotica_native: {self._error.value.decode()}')
         if self._free_native is not None:
@@ -161,12 +167,10 @@ class ArmSimulation:
             torque = np.clip(torque, -self._tau_max, self._tau_max)
         buffers = self._buffers
         buffers[0], buffers[1], buffers[2] = self.q, self.qd, torque
-        if native_library().ras_arm_step(self._native, *self._addresses,
-                                         self.params.step_period, self._error, ERROR_SIZE):
+        if self._native_step(self._native, *self._addresses, self.params.step_period,
+                             self._error, ERROR_SIZE):
             raise RuntimeError(f'robotica_native: {self._error.value.decode()}')
         self.q, self.qd = buffers[0].copy(), buffers[1].copy()   # callers may keep old ones
-        if self.params.respect_limits:
-            self._stop_at_limits()
         self.applied_torque = torque
         self.steps += 1
         return self.q
@@ -210,11 +214,3 @@ class ArmSimulation:
         self._model.inertias[n] = self._model.inertias[n] + pin.Inertia(mass, point,
                                                                         np.zeros((3, 3)))
         self._load_native_model()
-
-    def _stop_at_limits(self) -> None:
-        low, high = self._low, self._high
-        below, above = self.q < low, self.q > high
-        if below.any() or above.any():
-            self.q = np.clip(self.q, low, high)
-            self.qd = np.where((below & (self.qd < 0.0)) | (above & (self.qd > 0.0)), 0.0,
-                               self.qd)

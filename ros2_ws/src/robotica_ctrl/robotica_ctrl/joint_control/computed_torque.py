@@ -125,10 +125,12 @@ class ComputedTorque(JointControlLaw):
         n = self.check_inputs(reference, state, dt)
         if n != self.n:
             raise ValueError(f'the model has {self.n} joints, got {n}')
-        q, qd = np.asarray(state.q), np.asarray(state.qd)
-        e = np.asarray(reference.q_d) - q
-        tau_r = np.asarray(reference.qdd_d) + self._kv * (np.asarray(reference.qd_d) - qd) \
-            + self._kp * e
+        # The fields of JointReference and JointState are checked float64 vectors (n,) already.
+        q, qd = state.q, state.qd
+        e = reference.q_d - q
+        tau_r = self._kv * (reference.qd_d - qd)
+        tau_r += self._kp * e
+        tau_r += reference.qdd_d
         if self._integrates:
             self._integral = np.clip(self._integral + e * dt, -self._integral_max,
                                      self._integral_max)

@@ -10,7 +10,6 @@ clock and draws no random numbers.
 """
 
 from abc import ABC, abstractmethod
-from dataclasses import dataclass
 import math
 from typing import Any
 
@@ -22,13 +21,8 @@ __all__ = ['JointControlLaw', 'JointReference', 'JointState', 'check_dt', 'gain_
            'per_joint']
 
 
-_FLOAT64 = np.dtype(np.float64)
-
-
 def _vector(name: str, value: ArrayLike) -> NDArray[np.float64]:
-    """Return ``value`` as a float64 vector (n,) copy, or raise ValueError (finiteness apart)."""
-    if type(value) is np.ndarray and value.dtype == _FLOAT64 and value.ndim == 1 and value.size:
-        return value.copy()   # the per-step path of the nodes and the benchmark
+    """Return ``value`` as a float64 vector (n,), or raise ValueError (finiteness apart)."""
     try:
         array = np.array(value, dtype=np.float64)
     except (TypeError, ValueError) as err:
@@ -38,78 +32,102 @@ def _vector(name: str, value: ArrayLike) -> NDArray[np.float64]:
     return array
 
 
-def _same_shape(owner: Any, *names: str) -> None:
+def _checked_rows(names: tuple[str, ...], values: tuple[ArrayLike, ...]) -> NDArray[np.float64]:
     """
-    Freeze the fields ``names`` of ``owner`` as read-only finite float64 vectors of one shape.
+    Return ``values`` as the rows of one read-only (len(values), n) float64 array, all finite.
 
-    Finiteness is tested once for all of them (the sum of their squared norms is finite unless
-    an element is not, or the sum overflows); only then is each one tested, to name it.
+    One allocation and one finiteness test (the squared norm of all of them is finite unless an
+    element is not, or the sum overflows) per call, which runs on every control step; only a
+    failure looks at each value, to name it in the ValueError.
     """
-    arrays = []
-    squares = 0.0
-    for name in names:   # plain loops: this runs on every control step
-        array = _vector(name, getattr(owner, name))
-        squares += array.dot(array)
-        arrays.append(array)
-        if array.shape != arrays[0].shape:
-            raise ValueError(f'{", ".join(names)} must have the same shape, got '
-                             f'{[np.shape(getattr(owner, other)) for other in names]}')
-    if not math.isfinite(squares):
-        for name, array in zip(names, arrays):
-            if not all_finite(array):
-                raise ValueError(f'{name} must be finite, got {array!r}')
-    for name, array in zip(names, arrays):
-        array.setflags(write=False)
-        object.__setattr__(owner, name, array)
+    try:
+        rows = np.array(values, dtype=np.float64)
+    except (TypeError, ValueError):
+        rows = None   # not numbers, or of different shapes: found and named below
+    if rows is None or rows.ndim != 2 or rows.shape[1] == 0:
+        shapes = [_vector(name, value).shape for name, value in zip(names, values)]
+        raise ValueError(f'{", ".join(names)} must have the same shape, got {shapes}')
+    flat = rows.ravel()
+    if not math.isfinite(flat.dot(flat)):
+        for name, value, row in zip(names, values, rows):
+            if not all_finite(row):
+                raise ValueError(f'{name} must be finite, got {value!r}')
+    rows.setflags(write=False)
+    return rows
 
 
-@dataclass(frozen=True, eq=False)
-class JointReference:
+class _Immutable:
+    """Base of the per-step value objects: attributes are set once, in ``__init__``."""
+
+    __slots__ = ()
+
+    def __setattr__(self, name: str, value: Any) -> None:
+        raise AttributeError(f'{type(self).__name__} is immutable')
+
+    def __repr__(self) -> str:
+        names: tuple[str, ...] = self.__slots__
+        fields = ', '.join(f'{name}={getattr(self, name).tolist()}' for name in names)
+        return f'{type(self).__name__}({fields})'
+
+
+class JointReference(_Immutable):
     """
     A joint-space reference at one instant: q_d [rad | m], q_d' [/s] and q_d'' [/s²], each (n,).
 
-    ``qd_d`` and ``qdd_d`` default to zero (a set point). Arrays are read-only float64.
+    ``qd_d`` and ``qdd_d`` default to zero (a set point). The attributes are read-only float64
+    vectors of one shape; ValueError for any other shape or a value that is not finite.
 
     >>> JointReference([0.1, 0.2]).qdd_d
     array([0., 0.])
     """
 
-    q_d: ArrayLike
-    qd_d: ArrayLike | None = None
-    qdd_d: ArrayLike | None = None
+    __slots__ = ('q_d', 'qd_d', 'qdd_d')
+    q_d: NDArray[np.float64]
+    qd_d: NDArray[np.float64]
+    qdd_d: NDArray[np.float64]
 
-    def __post_init__(self) -> None:
-        n = np.size(self.q_d)
-        for name in ('qd_d', 'qdd_d'):
-            if getattr(self, name) is None:
-                object.__setattr__(self, name, np.zeros(n))
-        _same_shape(self, 'q_d', 'qd_d', 'qdd_d')
+    def __init__(self, q_d: ArrayLike, qd_d: ArrayLike | None = None,
+                 qdd_d: ArrayLike | None = None) -> None:
+        if qd_d is None or qdd_d is None:
+            zeros = np.zeros(_vector('q_d', q_d).shape)
+            qd_d = zeros if qd_d is None else qd_d
+            qdd_d = zeros if qdd_d is None else qdd_d
+        rows = _checked_rows(('q_d', 'qd_d', 'qdd_d'), (q_d, qd_d, qdd_d))
+        set_field = object.__setattr__
+        set_field(self, 'q_d', rows[0])
+        set_field(self, 'qd_d', rows[1])
+        set_field(self, 'qdd_d', rows[2])
 
     @property
     def n(self) -> int:
         """Return the number of joints."""
-        return int(np.size(self.q_d))
+        return len(self.q_d)
 
 
-@dataclass(frozen=True, eq=False)
-class JointState:
+class JointState(_Immutable):
     """
     Measured joint positions q [rad | m] and velocities q' [rad/s | m/s], each (n,).
+
+    The attributes are read-only float64 vectors of one shape (ValueError otherwise, or for a
+    value that is not finite).
 
     >>> JointState([0.0, 1.0], [0.0, 0.0]).n
     2
     """
 
-    q: ArrayLike
-    qd: ArrayLike
+    __slots__ = ('q', 'qd')
+    q: NDArray[np.float64]
+    qd: NDArray[np.float64]
 
-    def __post_init__(self) -> None:
-        _same_shape(self, 'q', 'qd')
+    def __init__(self, q: ArrayLike, qd: ArrayLike) -> None:
+        rows = _checked_rows(('q', 'qd'), (q, qd))
+        object.__setattr__(self, 'q', rows[0])
+        object.__setattr__(self, 'qd', rows[1])
 
     @property
     def n(self) -> int:
         """Return the number of joints."""
-        return int(np.size(self.q))
+        return len(self.q)
 
 
 def check_dt(dt: float) -> float:
