@@ -78,6 +78,26 @@ def test_saturation_and_joint_limits():
     assert sim.qd[4] == 0.0
 
 
+def test_joint_stop_holds_outward_and_releases_inward():
+    # The lower stop of joint 5 (-100°): held while pushed outwards, left when pushed back.
+    robot = puma560()
+    push = np.array([0, 0, 0, 0, -5.0, 0])
+    sim = ArmSimulation(robot, ArmSimulationParams(), np.zeros(6), np.zeros(6))
+    for _ in range(2000):
+        sim.step(push)
+    assert sim.q[4] == robot.qlim[4, 0]
+    assert sim.qd[4] == 0.0
+    for _ in range(20):
+        sim.step(-push)
+    assert sim.q[4] > robot.qlim[4, 0] and sim.qd[4] > 0.0
+    # Without the stops the same push carries the joint past its limit.
+    free = ArmSimulation(robot, ArmSimulationParams(respect_limits=False), np.zeros(6),
+                         np.zeros(6))
+    for _ in range(2000):
+        free.step(push)
+    assert free.q[4] < robot.qlim[4, 0] - 0.1
+
+
 def _mass_matrix_2r(q2, m1, m2, l1=3.0, l2=1.0):
     """Return M(q) of the Ej. 5.1 arm by its closed form (5.76)."""
     c2 = math.cos(q2)
