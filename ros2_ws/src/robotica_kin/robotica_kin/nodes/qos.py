@@ -9,6 +9,16 @@ QoS profiles by role, shared by every robotica node (STYLE.md §5, "QoS by role"
   and a volatile reader gets no stale history. They keep ``STREAM_SUB_DEPTH`` messages: a node
   off the lockstep chain (a sensor emulator) falls behind in bursts on a loaded machine, and with
   keep-last 10 a figure-eight run lost 6 of 750 gyro readings that way.
+* Replayed streams: the inputs of the nodes off the lockstep chain (the sensor emulators' ground
+  truth and joint states, the odometry's gyro, compass and GPS, the simulator's followed
+  topics) are subscribed RELIABLE and TRANSIENT_LOCAL, keeping ``STREAM_HISTORY`` messages: a
+  subscription matched late gets the publisher's history instead of losing the start of the
+  run. On a loaded machine one pair of processes took 3 s to discover each other; the gyro
+  emulator, subscribed volatile, then never saw the first 0.8 s of ground truth, and the
+  odometry's heading missed part of the first turn. These inputs need a TRANSIENT_LOCAL
+  publisher (every robotica stream is one): a volatile one is incompatible and not matched.
+  A node that replays history must not misuse it: the odometry drops what is older than its
+  first encoder reading (which it reads volatile, so that a restarted odometry starts now).
 * Commands are RELIABLE, VOLATILE: a late-joining consumer must never receive an old command.
   Their consumers keep the newest only (keep-last 1); their publishers keep a history of
   ``STREAM_HISTORY``, so that a recorder that falls behind for a moment (a 1 kHz lockstep arm)
@@ -24,6 +34,8 @@ STREAM_PUB_QOS = QoSProfile(depth=STREAM_HISTORY, reliability=ReliabilityPolicy.
                             durability=DurabilityPolicy.TRANSIENT_LOCAL)
 STREAM_SUB_DEPTH = 100   # messages: 2 s at 50 Hz
 STREAM_SUB_QOS = QoSProfile(depth=STREAM_SUB_DEPTH, reliability=ReliabilityPolicy.RELIABLE)
+STREAM_REPLAY_SUB_QOS = QoSProfile(depth=STREAM_HISTORY, reliability=ReliabilityPolicy.RELIABLE,
+                                   durability=DurabilityPolicy.TRANSIENT_LOCAL)
 COMMAND_QOS = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE)
 COMMAND_PUB_QOS = QoSProfile(depth=STREAM_HISTORY, reliability=ReliabilityPolicy.RELIABLE)
 LATCHED_QOS = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,

@@ -23,7 +23,7 @@ from rclpy.node import Node
 from robotica_kin.nodes.convert import quaternion_to_yaw, yaw_to_quaternion
 from robotica_kin.nodes.entry_point import run_node
 from robotica_kin.nodes.parameters import declare
-from robotica_kin.nodes.qos import STREAM_PUB_QOS, STREAM_SUB_QOS
+from robotica_kin.nodes.qos import STREAM_PUB_QOS, STREAM_REPLAY_SUB_QOS
 from robotica_sim.compass_model import CompassModel, CompassParams, heading_noise_stddev
 from sensor_msgs.msg import Imu, MagneticField
 
@@ -70,7 +70,8 @@ class CompassEmulatorNode(Node):
         self._field_pub = self.create_publisher(MagneticField, 'compass/magnetic_field',
                                                 STREAM_PUB_QOS)
         self._heading_pub = self.create_publisher(Imu, 'compass/heading', STREAM_PUB_QOS)
-        self.create_subscription(Odometry, 'ground_truth/odom', self._on_truth, STREAM_SUB_QOS)
+        self.create_subscription(Odometry, 'ground_truth/odom', self._on_truth,
+                                 STREAM_REPLAY_SUB_QOS)
         self.get_logger().info(f'heading noise {math.sqrt(self._heading_variance) / _DEG:.3g} '
                                'deg (1 sigma)')
 

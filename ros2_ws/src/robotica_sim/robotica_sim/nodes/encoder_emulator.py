@@ -16,7 +16,7 @@ from rclpy.experimental import EventsExecutor
 from rclpy.node import Node
 from robotica_kin.nodes.entry_point import run_node
 from robotica_kin.nodes.parameters import declare
-from robotica_kin.nodes.qos import STREAM_PUB_QOS, STREAM_SUB_QOS
+from robotica_kin.nodes.qos import STREAM_PUB_QOS, STREAM_REPLAY_SUB_QOS
 from robotica_msgs.msg import WheelEncoders
 from robotica_sim.encoder_model import EncoderModel, EncoderParams
 from sensor_msgs.msg import JointState
@@ -54,7 +54,7 @@ class EncoderEmulatorNode(Node):
                               read_only=True)
         self._pub = self.create_publisher(WheelEncoders, 'wheel_encoders', STREAM_PUB_QOS)
         self.create_subscription(JointState, 'joint_states', self._on_joint_states,
-                                 STREAM_SUB_QOS)
+                                 STREAM_REPLAY_SUB_QOS)
         self.get_logger().info(f'{self._ticks_per_rev} counts per wheel revolution, missed '
                                f'counts with p = {params.missed_count_probability}')
 

@@ -22,7 +22,7 @@ from robotica_kin.geodetic import GeodeticOrigin
 from robotica_kin.nodes.convert import seconds_to_stamp, stamp_to_seconds
 from robotica_kin.nodes.entry_point import run_node
 from robotica_kin.nodes.parameters import declare
-from robotica_kin.nodes.qos import STREAM_PUB_QOS, STREAM_SUB_QOS
+from robotica_kin.nodes.qos import STREAM_PUB_QOS, STREAM_REPLAY_SUB_QOS
 from robotica_sim.gps_model import gps_preset, GPS_PRESETS, GpsFix, GpsModel
 from sensor_msgs.msg import NavSatFix, NavSatStatus
 
@@ -52,7 +52,8 @@ class GpsEmulatorNode(Node):
                               read_only=True)
         self._pending: deque[GpsFix] = deque()
         self._pub = self.create_publisher(NavSatFix, 'gps/fix', STREAM_PUB_QOS)
-        self.create_subscription(Odometry, 'ground_truth/odom', self._on_truth, STREAM_SUB_QOS)
+        self.create_subscription(Odometry, 'ground_truth/odom', self._on_truth,
+                                 STREAM_REPLAY_SUB_QOS)
         self.get_logger().info(
             f'preset {preset!r}: sigma {self._params.horizontal_stddev:.3g} m per horizontal '
             f'axis, {self._params.update_rate:g} Hz, latency {self._params.latency:g} s')

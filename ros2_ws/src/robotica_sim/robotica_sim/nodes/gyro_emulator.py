@@ -18,7 +18,7 @@ from rclpy.node import Node
 from robotica_kin.nodes.convert import stamp_to_seconds
 from robotica_kin.nodes.entry_point import run_node
 from robotica_kin.nodes.parameters import declare
-from robotica_kin.nodes.qos import STREAM_PUB_QOS, STREAM_SUB_QOS
+from robotica_kin.nodes.qos import STREAM_PUB_QOS, STREAM_REPLAY_SUB_QOS
 from robotica_sim.gyro_model import GYRO_PRESETS, GyroModel
 from sensor_msgs.msg import Imu
 
@@ -40,7 +40,8 @@ class GyroEmulatorNode(Node):
                               read_only=True)
         self._last_t: float | None = None
         self._pub = self.create_publisher(Imu, 'imu/data', STREAM_PUB_QOS)
-        self.create_subscription(Odometry, 'ground_truth/odom', self._on_truth, STREAM_SUB_QOS)
+        self.create_subscription(Odometry, 'ground_truth/odom', self._on_truth,
+                                 STREAM_REPLAY_SUB_QOS)
         self.get_logger().info(f'gyro preset {preset!r}')
 
     def _on_truth(self, msg: Odometry) -> None:

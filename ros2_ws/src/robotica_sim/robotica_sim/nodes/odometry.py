@@ -19,8 +19,13 @@ is) makes a filter that takes each fix as independent overconfident; ``gps_bias.
 estimates it as two more, Gauss–Markov, states (``gps_bias.correlation_time``). Without fusion
 it is pure dead reckoning with a growing covariance. Measurements are applied when they
 arrive, except that one newer than the estimate waits until an encoder reading reaches its
-time; a fix's latency (0.1 s for DGPS) and a gyro sample that arrives after the encoder
-reading of the same step (its turn then counts at the next reading) are not compensated.
+time; a fix's latency (0.1 s for DGPS) is not compensated.
+The gyro, compass and GPS are subscribed transient-local (a late match replays the
+publisher's history, robotica_kin.nodes.qos); the encoder readings volatile: the first one the
+node receives starts the estimate, and anything older is dropped, so that a restarted node does
+not apply stale history. With the heading from the gyro, the first reading is not answered
+before a gyro publisher is matched, and each later one waits for the gyro sample (and with
+``fuse_compass`` the compass reading) of its time.
 Publishes ``odom`` (nav_msgs/Odometry: pose in ``odom_frame_id``, twist in ``base_frame_id``,
 REP-105, pose covariance of x, y and yaw) at each encoder reading.
 """
@@ -37,13 +42,14 @@ from robotica_kin.mobile.odometry import odometry_increment, ODOMETRY_METHODS
 from robotica_kin.nodes.convert import odometry_message, quaternion_to_yaw, stamp_to_seconds
 from robotica_kin.nodes.entry_point import run_node
 from robotica_kin.nodes.parameters import declare
-from robotica_kin.nodes.qos import STREAM_PUB_QOS, STREAM_SUB_QOS
+from robotica_kin.nodes.qos import STREAM_PUB_QOS, STREAM_REPLAY_SUB_QOS, STREAM_SUB_QOS
 from robotica_msgs.msg import WheelEncoders
 from sensor_msgs.msg import Imu, NavSatFix, NavSatStatus
 
 HEADING_SOURCES = ('encoders', 'gyro')
 PENDING_LIMIT = 1000   # measurements waiting for the estimate to reach their time
-GYRO_WAIT_READINGS = 25   # encoder readings that wait for a late gyro (0.5 s at 50 Hz)
+GYRO_WAIT_READINGS = 25   # encoder readings that wait for a late gyro/compass (0.5 s at 50 Hz)
+STAMP_TOLERANCE = 1e-9    # [s] stamps closer than this are the same time
 
 
 class OdometryNode(Node):
@@ -117,8 +123,10 @@ class OdometryNode(Node):
                                    read_only=True)
         self._last_ticks: tuple[int, int, float] | None = None
         self._twist = (0.0, 0.0)
-        self._gyro_increments: list[tuple[float, float, float]] = []   # (end t, angle, var)
-        self._last_gyro_t: float | None = None
+        self._gyro_samples: list[tuple[float, float, float]] = []   # (t, rate, variance) unused
+        self._newest_gyro_t: float | None = None   # [s] stamp of the newest gyro sample received
+        self._newest_compass_t: float | None = None   # [s] and of the newest compass reading
+        self._gyro_t = 0.0                          # [s] the gyro is integrated up to here
         self._first_reading_t: float | None = None
         self._readings: list[tuple[int, int, float, int]] = []   # encoder readings waiting
         self._max_rejections = declare(
@@ -130,12 +138,15 @@ class OdometryNode(Node):
         self._rejections = 0
         self._pub = self.create_publisher(Odometry, 'odom', STREAM_PUB_QOS)
         self.create_subscription(WheelEncoders, 'wheel_encoders', self._on_ticks, STREAM_SUB_QOS)
+        self._gyro_sub = None
         if self._heading_source == 'gyro':
-            self.create_subscription(Imu, 'imu/data', self._on_gyro, STREAM_SUB_QOS)
+            self._gyro_sub = self.create_subscription(Imu, 'imu/data', self._on_gyro,
+                                                      STREAM_REPLAY_SUB_QOS)
         if self._fuse_gps:
-            self.create_subscription(NavSatFix, 'gps/fix', self._on_fix, STREAM_SUB_QOS)
+            self.create_subscription(NavSatFix, 'gps/fix', self._on_fix, STREAM_REPLAY_SUB_QOS)
         if self._fuse_compass:
-            self.create_subscription(Imu, 'compass/heading', self._on_heading, STREAM_SUB_QOS)
+            self.create_subscription(Imu, 'compass/heading', self._on_heading,
+                                     STREAM_REPLAY_SUB_QOS)
         fused = [name for name, on in (('GPS', self._fuse_gps),
                                        ('compass', self._fuse_compass)) if on]
         self.get_logger().info(f'heading from {self._heading_source}, {self._method} update; '
@@ -149,14 +160,10 @@ class OdometryNode(Node):
         if not (math.isfinite(rate) and math.isfinite(variance)):
             self.get_logger().warn('non-finite gyro reading; ignored', throttle_duration_sec=5.0)
             return
-        if self._last_gyro_t is None and self._first_reading_t is not None:
-            # Samples missed at start-up: this rate covers the gap since the first reading.
-            self._last_gyro_t = self._first_reading_t
-        if self._last_gyro_t is not None and t > self._last_gyro_t:
-            dt = t - self._last_gyro_t                 # the rate held over the sample
-            self._gyro_increments.append((t, rate * dt, max(variance, 0.0) * dt * dt))
-        if self._last_gyro_t is None or t > self._last_gyro_t:
-            self._last_gyro_t = t
+        if self._newest_gyro_t is not None and t <= self._newest_gyro_t + STAMP_TOLERANCE:
+            return   # a sample again, or one older than the newest: nothing new
+        self._newest_gyro_t = t
+        self._gyro_samples.append((t, rate, max(variance, 0.0)))
         self._drain_readings()
 
     def _on_ticks(self, msg: WheelEncoders) -> None:
@@ -164,43 +171,68 @@ class OdometryNode(Node):
             self.get_logger().warn('wheel_encoders with ticks_per_revolution 0; ignored',
                                    throttle_duration_sec=5.0)
             return
-        self._readings.append((msg.left_ticks, msg.right_ticks,
-                               stamp_to_seconds(msg.header.stamp), msg.ticks_per_revolution))
+        reading = (msg.left_ticks, msg.right_ticks, stamp_to_seconds(msg.header.stamp),
+                   msg.ticks_per_revolution)
+        if self._readings and abs(self._readings[-1][2] - reading[2]) <= STAMP_TOLERANCE:
+            self._readings[-1] = reading   # a waiting state sent again: answered once
+        else:
+            self._readings.append(reading)
         self._drain_readings()
 
     def _drain_readings(self) -> None:
         """
         Process the encoder readings in order, each once its heading increment is known.
 
-        With the heading from the gyro, a reading of time t waits for the gyro sample of time t
-        (a separate process may deliver it later); after ``GYRO_WAIT_READINGS`` readings
-        without it, the oldest goes on with the gyro samples so far, and the node says so.
-        Until the gyro's first sample nothing waits (in lockstep, waiting for a gyro that
-        starts late would stall the loop); that sample's rate then covers the gap.
+        With the heading from the gyro, the first reading waits until a gyro publisher is
+        matched (in lockstep the loop's answer to step 0 then shows that the gyro is connected;
+        the simulator publishes step 0 again until it is answered), and a later reading of time
+        t waits for the gyro sample of time t (a separate process may deliver it later, and a
+        late match replays it). With ``fuse_compass`` it also waits for the compass reading of
+        time t, so that the reading is compared with the estimate of its own time: applied to a
+        newer estimate, readings that came late under load pulled the heading back by up to
+        0.25 rad and put y outside its 3 sigma for a quarter of a figure eight. After
+        ``GYRO_WAIT_READINGS`` readings without them, the oldest goes on with the samples so
+        far, and the node says so; a gyro sample that comes later still counts, at the next
+        reading.
         """
         while self._readings:
             t = self._readings[0][2]
-            waiting = (self._heading_source == 'gyro' and self._last_ticks is not None
-                       and self._last_gyro_t is not None and self._last_gyro_t < t - 1e-9)
+            if self._last_ticks is None:
+                waiting = (self._heading_source == 'gyro'
+                           and self._gyro_sub.get_publisher_count() == 0)
+            else:
+                waiting = any(on and (newest is None or newest < t - STAMP_TOLERANCE)
+                              for on, newest in (
+                                  (self._heading_source == 'gyro', self._newest_gyro_t),
+                                  (self._fuse_compass, self._newest_compass_t)))
             if waiting and len(self._readings) <= GYRO_WAIT_READINGS:
+                if self._last_ticks is None:
+                    self.get_logger().info('waiting for a gyro publisher on imu/data',
+                                           throttle_duration_sec=5.0)
                 return
             if waiting:
-                self.get_logger().warn(f'no gyro sample up to t = {t:.3f} s: heading from the '
-                                       'samples so far', throttle_duration_sec=5.0)
+                self.get_logger().warn(f'no gyro or compass sample up to t = {t:.3f} s: going '
+                                       'on with the samples so far', throttle_duration_sec=5.0)
             self._process_reading(*self._readings.pop(0))
 
     def _process_reading(self, left_ticks: int, right_ticks: int, t: float,
                          ticks_per_revolution: int) -> None:
         if self._last_ticks is None:
             self._last_ticks = (left_ticks, right_ticks, t)
-            self._first_reading_t = t
-            self._gyro_increments = [g for g in self._gyro_increments if g[0] > t + 1e-9]
+            self._first_reading_t = self._gyro_t = t
+            # Replayed history from before the estimate starts (a restarted node): dropped.
+            self._gyro_samples = [g for g in self._gyro_samples if g[0] > t + STAMP_TOLERANCE]
+            stale = [p for p in self._pending if p[0] < t - STAMP_TOLERANCE]
+            if stale:
+                self._pending = [p for p in self._pending if p[0] >= t - STAMP_TOLERANCE]
+                self.get_logger().info(f'{len(stale)} measurements older than the first encoder '
+                                       f'reading (t = {t:.3f} s) dropped')
             self._apply_due(t)
             self._publish(t)
             return
         left0, right0, t0 = self._last_ticks
-        if abs(t - t0) <= 1e-9:   # the same state again (lockstep start-up): answer it again
-            self._publish(t)       # any travel since counts at the next reading
+        if abs(t - t0) <= STAMP_TOLERANCE:   # the same state again (lockstep start-up):
+            self._publish(t)                 # answer it again; any travel counts at the next
             return
         if t < t0:
             self.get_logger().warn(f'encoder time went back ({t0} -> {t} s); reading ignored',
@@ -212,15 +244,13 @@ class OdometryNode(Node):
         self._last_ticks = (left_ticks, right_ticks, t)
         heading_variance = None
         if self._heading_source == 'gyro':
-            used = [g for g in self._gyro_increments if g[0] <= t + 1e-9]
-            self._gyro_increments = [g for g in self._gyro_increments if g[0] > t + 1e-9]
-            angle = sum(g[1] for g in used)
+            angle, gyro_variance = self._gyro_turn(t)
             # Keep the distance of the wheels, take the turn from the gyro (§7.7.3).
             centre, half_turn = 0.5 * (left + right), 0.5 * angle * self._track
             left, right = centre - half_turn, centre + half_turn
             # The reported white noise, plus what a gyro's covariance leaves out: its scale
             # factor (k_turn per radian turned) and its bias over the interval.
-            heading_variance = (sum(g[2] for g in used) + self._noise.k_turn * abs(angle)
+            heading_variance = (gyro_variance + self._noise.k_turn * abs(angle)
                                 + (self._gyro_bias_stddev * (t - t0)) ** 2)
         before = self._ekf.pose
         after = odometry_increment(before, left, right, self._track, self._method)
@@ -229,6 +259,22 @@ class OdometryNode(Node):
         self._twist = (0.5 * (left + right) / (t - t0), (right - left) / self._track / (t - t0))
         self._apply_due(t)
         self._publish(t)
+
+    def _gyro_turn(self, t: float) -> tuple[float, float]:
+        """
+        Return the turn [rad] and its variance [rad²] from the gyro samples up to time ``t`` [s].
+
+        Each sample's rate holds over the interval since the previous one (the gyro emulator's
+        sample period); the first sample of a run covers the time since the first reading.
+        """
+        angle = variance = 0.0
+        while self._gyro_samples and self._gyro_samples[0][0] <= t + STAMP_TOLERANCE:
+            sample_t, rate, rate_variance = self._gyro_samples.pop(0)
+            dt = max(sample_t - self._gyro_t, 0.0)
+            angle += rate * dt
+            variance += rate_variance * dt * dt
+            self._gyro_t = max(self._gyro_t, sample_t)
+        return angle, variance
 
     def _on_fix(self, msg: NavSatFix) -> None:
         if msg.status.status == NavSatStatus.STATUS_NO_FIX:
@@ -255,15 +301,18 @@ class OdometryNode(Node):
                     'GPS fix', inflation)
 
     def _on_heading(self, msg: Imu) -> None:
+        t = stamp_to_seconds(msg.header.stamp)
+        self._newest_compass_t = max(t, self._newest_compass_t or t)
         yaw = quaternion_to_yaw(msg.orientation)
         variance = msg.orientation_covariance[8]
         if not (math.isfinite(yaw) and math.isfinite(variance) and variance > 0.0):
             self.get_logger().warn('compass heading without a finite, positive variance; '
                                    'ignored', throttle_duration_sec=5.0)
-            return
-        self._defer(stamp_to_seconds(msg.header.stamp),
-                    lambda: self._ekf.update_heading(yaw, variance), 'compass heading',
-                    lambda: [0.0, 0.0, math.remainder(yaw - self._ekf.pose[2], math.tau) ** 2])
+        else:
+            self._defer(t, lambda: self._ekf.update_heading(yaw, variance), 'compass heading',
+                        lambda: [0.0, 0.0,
+                                 math.remainder(yaw - self._ekf.pose[2], math.tau) ** 2])
+        self._drain_readings()
 
     def _defer(self, t: float, update, what: str, inflation) -> None:
         """
@@ -272,9 +321,12 @@ class OdometryNode(Node):
         The sensors are separate processes: a compass reading of step k may arrive before the
         encoder reading that moves the estimate to step k, and compared with the pose of step
         k - 1 it would carry the turn of one step as an error. It waits in a queue (at most
-        ``PENDING_LIMIT``) until then; a reading older than the estimate is applied at once.
+        ``PENDING_LIMIT``) until then; a reading older than the estimate is applied at once,
+        and one older than the first encoder reading (replayed history) is dropped.
         """
-        if self._last_ticks is not None and t <= self._last_ticks[2] + 1e-9:
+        if self._first_reading_t is not None and t < self._first_reading_t - STAMP_TOLERANCE:
+            return
+        if self._last_ticks is not None and t <= self._last_ticks[2] + STAMP_TOLERANCE:
             self._correct(update, what, inflation)
             return
         if len(self._pending) >= PENDING_LIMIT:
@@ -285,8 +337,9 @@ class OdometryNode(Node):
 
     def _apply_due(self, t: float) -> None:
         """Apply the queued measurements of time <= ``t`` [s], in time order."""
-        due = sorted((p for p in self._pending if p[0] <= t + 1e-9), key=lambda p: p[0])
-        self._pending = [p for p in self._pending if p[0] > t + 1e-9]
+        due = sorted((p for p in self._pending if p[0] <= t + STAMP_TOLERANCE),
+                     key=lambda p: p[0])
+        self._pending = [p for p in self._pending if p[0] > t + STAMP_TOLERANCE]
         for _, update, what, inflation in due:
             self._correct(update, what, inflation)
 

@@ -20,7 +20,10 @@ Pacing (DESIGN.md, time and recording):
   ``lockstep.max_lag`` simulated seconds behind the last step published. Without this, a
   lockstep loop outran them on a loaded machine and their input queues overflowed: a run lost up
   to a third of its ``/odom`` and ``/wheel_encoders`` messages, and its bag with them. A followed
-  topic counts once a publisher of it is matched.
+  topic counts once a publisher of it is matched; a lockstep run starts once every followed topic
+  has one (at most ``lockstep.start_timeout``), so that no follower is discovered mid-run. They
+  are subscribed transient-local: discovery is not symmetric, and a gyro emulator's writer once
+  matched the simulator's reader 1 s after the reader had matched it.
 
 At ``end_time`` the node publishes a final status and exits with code 0.
 """
@@ -35,7 +38,7 @@ from rclpy.executors import Executor
 from rclpy.node import Node
 from robotica_kin.nodes.convert import seconds_to_stamp
 from robotica_kin.nodes.parameters import declare
-from robotica_kin.nodes.qos import STREAM_PUB_QOS, STREAM_SUB_QOS
+from robotica_kin.nodes.qos import STREAM_PUB_QOS, STREAM_REPLAY_SUB_QOS
 from robotica_msgs.msg import SimulatorStatus
 from robotica_sim.bag_types import message_class
 from rosgraph_msgs.msg import Clock
@@ -151,7 +154,7 @@ class SteppedSimulatorNode(Node):
                 self._followed[topic] = max(self._followed[topic], header_stamp(data))
             self._followed[topic] = 0.0
             self._follow_subscriptions[topic] = self.create_subscription(
-                msg_class, topic, newest, STREAM_SUB_QOS, raw=True)
+                msg_class, topic, newest, STREAM_REPLAY_SUB_QOS, raw=True)
         if len(self._follow_subscriptions) == len(self._follow_topics):
             self._follow_timer.cancel()
 
@@ -197,6 +200,19 @@ class SteppedSimulatorNode(Node):
             executor.spin_once(timeout_sec=min(remaining, 1.0))
         return done()
 
+    def _wait_for_followers(self, executor: Executor) -> None:
+        """Wait (at most ``lockstep.start_timeout``) until each followed topic has a publisher."""
+        def missing() -> list[str]:
+            return [t for t in self._follow_topics if t not in self._follow_subscriptions or (
+                self._follow_subscriptions[t] is not None
+                and self._follow_subscriptions[t].get_publisher_count() == 0)]
+        give_up = time.monotonic() + self._start_timeout
+        while missing() and time.monotonic() < give_up:
+            executor.spin_once(timeout_sec=FOLLOW_DISCOVERY_PERIOD)   # matching wakes nothing
+        if missing():
+            self.get_logger().warn(f'no publisher of {", ".join(missing())} after '
+                                   f'{self._start_timeout} s; starting without')
+
     def _wait_for_first_answer(self, executor: Executor) -> bool:
         give_up = time.monotonic() + self._start_timeout
         while time.monotonic() < give_up:
@@ -218,6 +234,7 @@ class SteppedSimulatorNode(Node):
         self._wall_start = time.monotonic()
         lockstep = self._pacing == 'lockstep'
         if lockstep:
+            self._wait_for_followers(executor)
             if not self._wait_for_first_answer(executor):
                 self.get_logger().error(
                     f'no command on {self._command_topic} within {self._start_timeout} s: is a '

@@ -11,6 +11,7 @@ import math
 from nav_msgs.msg import Odometry
 import pytest
 from rclpy.qos import QoSProfile, ReliabilityPolicy
+from robotica_kin.nodes.qos import STREAM_PUB_QOS
 from sensor_msgs.msg import Imu, MagneticField
 
 pytestmark = pytest.mark.ros
@@ -31,7 +32,7 @@ def test_heading_equals_true_yaw_without_errors(start_node, ros_node, spin, publ
     headings, fields = [], []
     node.create_subscription(Imu, 'compass/heading', headings.append, QOS)
     node.create_subscription(MagneticField, 'compass/magnetic_field', fields.append, QOS)
-    pub = node.create_publisher(Odometry, 'ground_truth/odom', QOS)
+    pub = node.create_publisher(Odometry, 'ground_truth/odom', STREAM_PUB_QOS)
     assert spin(executor, lambda: pub.get_subscription_count() > 0)
     yaw = 0.7
     assert publish(executor, pub, truth(3, yaw), lambda: headings and fields)

@@ -8,6 +8,7 @@ import math
 
 import pytest
 from rclpy.qos import QoSProfile, ReliabilityPolicy
+from robotica_kin.nodes.qos import STREAM_PUB_QOS
 from robotica_msgs.msg import WheelEncoders
 from sensor_msgs.msg import JointState
 
@@ -21,7 +22,7 @@ def test_ticks_from_wheel_angles(start_node, ros_node, spin, publish):
                       '-p', 'decoding:=4')
     received = []
     node.create_subscription(WheelEncoders, 'wheel_encoders', received.append, QOS)
-    pub = node.create_publisher(JointState, 'joint_states', QOS)
+    pub = node.create_publisher(JointState, 'joint_states', STREAM_PUB_QOS)
     assert spin(executor, lambda: pub.get_subscription_count() > 0 and
                 node.count_publishers('wheel_encoders') > 0)
     msg = JointState(name=['right_wheel_joint', 'left_wheel_joint'],
@@ -40,7 +41,7 @@ def test_missing_joint_and_nan_are_skipped(start_node, ros_node, spin, publish, 
     proc = start_node('robotica_sim', 'encoder_emulator')
     received = []
     node.create_subscription(WheelEncoders, 'wheel_encoders', received.append, QOS)
-    pub = node.create_publisher(JointState, 'joint_states', QOS)
+    pub = node.create_publisher(JointState, 'joint_states', STREAM_PUB_QOS)
     assert spin(executor, lambda: pub.get_subscription_count() > 0)
     pub.publish(JointState(name=['left_wheel_joint'], position=[1.0]))
     pub.publish(JointState(name=['left_wheel_joint', 'right_wheel_joint'],

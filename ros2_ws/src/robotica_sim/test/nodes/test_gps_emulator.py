@@ -11,6 +11,7 @@ import math
 from nav_msgs.msg import Odometry
 import pytest
 from rclpy.qos import QoSProfile, ReliabilityPolicy
+from robotica_kin.nodes.qos import STREAM_PUB_QOS
 from sensor_msgs.msg import NavSatFix, NavSatStatus
 
 pytestmark = pytest.mark.ros
@@ -43,7 +44,7 @@ def test_rtk_fixes_at_the_rate_with_latency(start_node, ros_node, spin):
                       '-p', 'origin.altitude:=10.0')
     fixes = []
     node.create_subscription(NavSatFix, 'gps/fix', fixes.append, QOS)
-    pub = node.create_publisher(Odometry, 'ground_truth/odom', QOS)
+    pub = node.create_publisher(Odometry, 'ground_truth/odom', STREAM_PUB_QOS)
     assert spin(executor, lambda: pub.get_subscription_count() > 0
                 and node.count_publishers('gps/fix') > 0)
     spin(executor, lambda: False, timeout=1.0)   # let the node's writer match this reader

@@ -11,6 +11,7 @@ import math
 from nav_msgs.msg import Odometry
 import pytest
 from rclpy.qos import QoSProfile, ReliabilityPolicy
+from robotica_kin.nodes.qos import STREAM_PUB_QOS
 from sensor_msgs.msg import Imu
 
 pytestmark = pytest.mark.ros
@@ -30,7 +31,7 @@ def test_constant_rate_is_read_with_its_noise(start_node, ros_node, spin):
     start_node('robotica_sim', 'gyro_emulator', '-p', 'preset:=mems_consumer', '-p', 'seed:=5')
     readings = []
     node.create_subscription(Imu, 'imu/data', readings.append, QOS)
-    pub = node.create_publisher(Odometry, 'ground_truth/odom', QOS)
+    pub = node.create_publisher(Odometry, 'ground_truth/odom', STREAM_PUB_QOS)
     assert spin(executor, lambda: pub.get_subscription_count() > 0
                 and node.count_publishers('imu/data') > 0)
     spin(executor, lambda: False, timeout=1.0)

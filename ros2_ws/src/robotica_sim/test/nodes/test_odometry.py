@@ -11,6 +11,7 @@ import math
 from nav_msgs.msg import Odometry
 import pytest
 from rclpy.qos import QoSProfile, ReliabilityPolicy
+from robotica_kin.nodes.qos import STREAM_PUB_QOS
 from robotica_msgs.msg import WheelEncoders
 from sensor_msgs.msg import Imu, NavSatFix
 
@@ -56,7 +57,7 @@ def test_heading_from_the_gyro(start_node, ros_node, spin):
     odom = []
     node.create_subscription(Odometry, 'odom', odom.append, QOS)
     enc = node.create_publisher(WheelEncoders, 'wheel_encoders', QOS)
-    imu = node.create_publisher(Imu, 'imu/data', QOS)
+    imu = node.create_publisher(Imu, 'imu/data', STREAM_PUB_QOS)
     ready(node, executor, spin, enc, imu)
     for k in range(11):
         gyro = Imu()
@@ -71,6 +72,63 @@ def test_heading_from_the_gyro(start_node, ros_node, spin):
     assert 2.0 * math.atan2(q.z, q.w) == pytest.approx(0.5 * 1.0, abs=1e-9)
 
 
+def gyro_sample(t, rate):
+    msg = Imu()
+    msg.header.stamp = ticks(t, 0, 0).header.stamp
+    msg.angular_velocity.z = rate
+    return msg
+
+
+def test_gyro_samples_published_before_the_odometry_started_are_used(start_node, ros_node,
+                                                                     spin):
+    # A gyro whose samples went out before the odometry's subscription was matched (a loaded
+    # machine, discovery late): its history is replayed, and each reading waits for the sample
+    # of its time. 0.5 rad/s over (0, 1] s: 0.5 rad; with the samples lost, 0.
+    node, executor = ros_node
+    imu = node.create_publisher(Imu, 'imu/data', STREAM_PUB_QOS)
+    for k in range(1, 11):
+        imu.publish(gyro_sample(0.1 * k, 0.5))
+    start_node('robotica_sim', 'odometry', '-p', 'heading_source:=gyro')
+    odom = []
+    node.create_subscription(Odometry, 'odom', odom.append, QOS)
+    enc = node.create_publisher(WheelEncoders, 'wheel_encoders', QOS)
+    ready(node, executor, spin, enc, imu)
+    for k in range(11):
+        enc.publish(ticks(0.1 * k, 0, 0))
+    assert spin(executor, lambda: len(odom) >= 11)
+    q = odom[-1].pose.pose.orientation
+    assert 2.0 * math.atan2(q.z, q.w) == pytest.approx(0.5, abs=1e-9)
+
+
+def test_replayed_history_older_than_the_first_reading_is_dropped(start_node, ros_node, spin):
+    # A restarted odometry gets the compass's history (1 rad, from t = 0 to 0.5 s); it starts at
+    # its first encoder reading (t = 1 s) and applies only what comes after: one reading of
+    # 1 rad with R = 1 rad² against P = 1 rad² moves the heading by P / (P + R) = 1/2 of it.
+    node, executor = ros_node
+    compass = node.create_publisher(Imu, 'compass/heading', STREAM_PUB_QOS)
+    heading = Imu()
+    heading.orientation.z, heading.orientation.w = math.sin(0.5), math.cos(0.5)
+    heading.orientation_covariance[8] = 1.0
+    for k in range(6):
+        heading.header.stamp = ticks(0.1 * k, 0, 0).header.stamp
+        compass.publish(heading)
+    start_node('robotica_sim', 'odometry', '-p', 'fuse_compass:=true',
+               '-p', 'initial_stddev.heading:=1.0')
+    odom = []
+    node.create_subscription(Odometry, 'odom', odom.append, QOS)
+    enc = node.create_publisher(WheelEncoders, 'wheel_encoders', QOS)
+    ready(node, executor, spin, enc, compass)
+    enc.publish(ticks(1.0, 0, 0))
+    assert spin(executor, lambda: odom)
+    assert odom[-1].pose.covariance[35] == pytest.approx(1.0, abs=1e-12)   # nothing applied
+    heading.header.stamp = ticks(1.1, 0, 0).header.stamp
+    compass.publish(heading)
+    enc.publish(ticks(1.1, 0, 0))            # it waits for the compass reading of its time
+    assert spin(executor, lambda: len(odom) >= 2)
+    q = odom[-1].pose.pose.orientation
+    assert 2.0 * math.atan2(q.z, q.w) == pytest.approx(0.5, abs=1e-9)
+
+
 def test_gps_fix_pulls_the_estimate(start_node, ros_node, spin):
     node, executor = ros_node
     start_node('robotica_sim', 'odometry', '-p', 'fuse_gps:=true',
@@ -79,7 +137,7 @@ def test_gps_fix_pulls_the_estimate(start_node, ros_node, spin):
     odom = []
     node.create_subscription(Odometry, 'odom', odom.append, QOS)
     enc = node.create_publisher(WheelEncoders, 'wheel_encoders', QOS)
-    gps = node.create_publisher(NavSatFix, 'gps/fix', QOS)
+    gps = node.create_publisher(NavSatFix, 'gps/fix', STREAM_PUB_QOS)
     ready(node, executor, spin, enc, gps)
     # 2 m east of the origin on the equator: 2 / a rad of longitude (a = 6378137 m).
     fix = NavSatFix(latitude=0.0, longitude=math.degrees(2.0 / 6378137.0), altitude=0.0,
@@ -111,7 +169,7 @@ def test_filter_that_rejects_every_heading_is_reopened(start_node, ros_node, spi
     odom = []
     node.create_subscription(Odometry, 'odom', odom.append, QOS)
     enc = node.create_publisher(WheelEncoders, 'wheel_encoders', QOS)
-    compass = node.create_publisher(Imu, 'compass/heading', QOS)
+    compass = node.create_publisher(Imu, 'compass/heading', STREAM_PUB_QOS)
     ready(node, executor, spin, enc, compass)
     heading = Imu()
     heading.orientation.z, heading.orientation.w = math.sin(0.5), math.cos(0.5)
