@@ -36,7 +36,8 @@ from robotica_kin.nodes.convert import seconds_to_stamp, stamp_to_seconds
 from robotica_kin.nodes.dh_messages import dynamic_robot_from_parameters
 from robotica_kin.nodes.entry_point import run_node
 from robotica_kin.nodes.parameters import declare
-from robotica_kin.nodes.qos import COMMAND_PUB_QOS, LATCHED_QOS, STREAM_PUB_QOS, STREAM_SUB_QOS
+from robotica_kin.nodes.qos import (COMMAND_PUB_QOS, INPUT_QOS_OVERRIDES, LATCHED_QOS,
+                                    STREAM_PUB_QOS, STREAM_SUB_QOS)
 from robotica_kin.robots import ROBOT_NAMES
 from robotica_msgs.msg import JointControllerState
 from sensor_msgs.msg import JointState as JointStateMsg
@@ -113,7 +114,7 @@ class JointControllerNode(Node):
         self.create_subscription(JointTrajectory, '~/joint_trajectory', self._on_trajectory,
                                  LATCHED_QOS)
         self.create_subscription(JointStateMsg, 'joint_states', self._on_joint_states,
-                                 STREAM_SUB_QOS)
+                                 STREAM_SUB_QOS, qos_overriding_options=INPUT_QOS_OVERRIDES)
         self.get_logger().info(f'law {self._law_name} on model {self._robot.name!r}, joints '
                                f'{self._names}')
 

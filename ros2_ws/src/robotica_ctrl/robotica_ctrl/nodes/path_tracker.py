@@ -43,7 +43,8 @@ from robotica_ctrl.mobile.tracking_laws import (LAW_PARAMETERS, LAWS, make_law,
 from robotica_kin.nodes.convert import path_points, pose2d_from_odometry, stamp_to_seconds
 from robotica_kin.nodes.entry_point import run_node
 from robotica_kin.nodes.parameters import declare
-from robotica_kin.nodes.qos import COMMAND_PUB_QOS, LATCHED_QOS, STREAM_PUB_QOS, STREAM_SUB_QOS
+from robotica_kin.nodes.qos import (COMMAND_PUB_QOS, INPUT_QOS_OVERRIDES, LATCHED_QOS,
+                                    STREAM_PUB_QOS, STREAM_SUB_QOS)
 from robotica_msgs.msg import TrackingError, VehicleCommand
 
 NODE_LAWS = (*LAWS, 'open_loop')
@@ -114,7 +115,7 @@ class PathTrackerNode(Node):
                                                 STREAM_PUB_QOS)
         self.create_subscription(Path, '~/path', self._on_path, LATCHED_QOS)
         self.create_subscription(Odometry, POSE_SOURCES[pose_source], self._on_odom,
-                                 STREAM_SUB_QOS)
+                                 STREAM_SUB_QOS, qos_overriding_options=INPUT_QOS_OVERRIDES)
         if self._control_rate > 0.0:
             self.create_timer(1.0 / self._control_rate, self._on_timer)
         self.get_logger().info(f'law {self._law_name}, pose from '

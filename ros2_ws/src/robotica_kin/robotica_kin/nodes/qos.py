@@ -19,6 +19,12 @@ QoS profiles by role, shared by every robotica node (STYLE.md §5, "QoS by role"
   publisher (every robotica stream is one): a volatile one is incompatible and not matched.
   A node that replays history must not misuse it: the odometry drops what is older than its
   first encoder reading (which it reads volatile, so that a restarted odometry starts now).
+* Inputs that a user's own stack may feed (the odometry's encoder, gyro, GPS and compass
+  readings, the path tracker's pose, the joint controller's joint states) accept rclpy's QoS
+  overrides by parameter (``INPUT_QOS_OVERRIDES``): a driver that publishes sensor-data QoS
+  (best effort, volatile), which a reliable or transient-local reader never matches, is read with
+  ``-p qos_overrides./imu/data.subscription.reliability:=best_effort -p
+  qos_overrides./imu/data.subscription.durability:=volatile``.
 * Commands are RELIABLE, VOLATILE: a late-joining consumer must never receive an old command.
   Their consumers keep the newest only (keep-last 1); their publishers keep a history of
   ``STREAM_HISTORY``, so that a recorder that falls behind for a moment (a 1 kHz lockstep arm)
@@ -26,7 +32,8 @@ QoS profiles by role, shared by every robotica node (STYLE.md §5, "QoS by role"
   recorder is overwritten by the next one.
 * Latched data (paths, models) are RELIABLE, TRANSIENT_LOCAL, keep-last 1 on both ends.
 """
-from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
+from rclpy.qos import DurabilityPolicy, QoSPolicyKind, QoSProfile, ReliabilityPolicy
+from rclpy.qos_overriding_options import QoSOverridingOptions
 
 STREAM_HISTORY = 500   # messages: 10 s at 50 Hz, several seconds of a lockstep run
 
@@ -40,3 +47,6 @@ COMMAND_QOS = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE)
 COMMAND_PUB_QOS = QoSProfile(depth=STREAM_HISTORY, reliability=ReliabilityPolicy.RELIABLE)
 LATCHED_QOS = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,
                          durability=DurabilityPolicy.TRANSIENT_LOCAL)
+INPUT_QOS_OVERRIDES = QoSOverridingOptions(policy_kinds=(
+    QoSPolicyKind.RELIABILITY, QoSPolicyKind.DURABILITY, QoSPolicyKind.HISTORY,
+    QoSPolicyKind.DEPTH))

@@ -42,7 +42,8 @@ from robotica_kin.mobile.odometry import odometry_increment, ODOMETRY_METHODS
 from robotica_kin.nodes.convert import odometry_message, quaternion_to_yaw, stamp_to_seconds
 from robotica_kin.nodes.entry_point import run_node
 from robotica_kin.nodes.parameters import declare
-from robotica_kin.nodes.qos import STREAM_PUB_QOS, STREAM_REPLAY_SUB_QOS, STREAM_SUB_QOS
+from robotica_kin.nodes.qos import (INPUT_QOS_OVERRIDES, STREAM_PUB_QOS, STREAM_REPLAY_SUB_QOS,
+                                    STREAM_SUB_QOS)
 from robotica_msgs.msg import WheelEncoders
 from sensor_msgs.msg import Imu, NavSatFix, NavSatStatus
 
@@ -137,16 +138,20 @@ class OdometryNode(Node):
         self._pending: list[tuple] = []   # (t, update, what, inflation), see _defer
         self._rejections = 0
         self._pub = self.create_publisher(Odometry, 'odom', STREAM_PUB_QOS)
-        self.create_subscription(WheelEncoders, 'wheel_encoders', self._on_ticks, STREAM_SUB_QOS)
+        overrides = INPUT_QOS_OVERRIDES
+        self.create_subscription(WheelEncoders, 'wheel_encoders', self._on_ticks, STREAM_SUB_QOS,
+                                 qos_overriding_options=overrides)
         self._gyro_sub = None
         if self._heading_source == 'gyro':
             self._gyro_sub = self.create_subscription(Imu, 'imu/data', self._on_gyro,
-                                                      STREAM_REPLAY_SUB_QOS)
+                                                      STREAM_REPLAY_SUB_QOS,
+                                                      qos_overriding_options=overrides)
         if self._fuse_gps:
-            self.create_subscription(NavSatFix, 'gps/fix', self._on_fix, STREAM_REPLAY_SUB_QOS)
+            self.create_subscription(NavSatFix, 'gps/fix', self._on_fix, STREAM_REPLAY_SUB_QOS,
+                                     qos_overriding_options=overrides)
         if self._fuse_compass:
             self.create_subscription(Imu, 'compass/heading', self._on_heading,
-                                     STREAM_REPLAY_SUB_QOS)
+                                     STREAM_REPLAY_SUB_QOS, qos_overriding_options=overrides)
         fused = [name for name, on in (('GPS', self._fuse_gps),
                                        ('compass', self._fuse_compass)) if on]
         self.get_logger().info(f'heading from {self._heading_source}, {self._method} update; '

@@ -10,7 +10,7 @@ import math
 
 from nav_msgs.msg import Odometry
 import pytest
-from rclpy.qos import QoSProfile, ReliabilityPolicy
+from rclpy.qos import DurabilityPolicy, qos_profile_sensor_data, QoSProfile, ReliabilityPolicy
 from robotica_kin.nodes.qos import STREAM_PUB_QOS
 from robotica_msgs.msg import WheelEncoders
 from sensor_msgs.msg import Imu, NavSatFix
@@ -70,6 +70,31 @@ def test_heading_from_the_gyro(start_node, ros_node, spin):
     assert spin(executor, lambda: len(odom) >= 11)
     q = odom[-1].pose.pose.orientation
     assert 2.0 * math.atan2(q.z, q.w) == pytest.approx(0.5 * 1.0, abs=1e-9)
+
+
+def test_sensor_data_gyro_is_read_with_qos_overrides(start_node, ros_node, spin):
+    # A driver publishing sensor-data QoS (best effort, volatile) is matched once the reader's
+    # reliability and durability are overridden by parameter (rclpy's qos_overrides).
+    node, executor = ros_node
+    prefix = 'qos_overrides./imu/data.subscription.'
+    start_node('robotica_sim', 'odometry', '-p', 'heading_source:=gyro',
+               '-p', f'{prefix}reliability:=best_effort', '-p', f'{prefix}durability:=volatile')
+    odom = []
+    node.create_subscription(Odometry, 'odom', odom.append, QOS)
+    enc = node.create_publisher(WheelEncoders, 'wheel_encoders', QOS)
+    imu = node.create_publisher(Imu, 'imu/data', qos_profile_sensor_data)
+    ready(node, executor, spin, enc, imu)
+    [reader] = node.get_subscriptions_info_by_topic('/imu/data')
+    assert reader.qos_profile.reliability == ReliabilityPolicy.BEST_EFFORT
+    assert reader.qos_profile.durability == DurabilityPolicy.VOLATILE
+    for k in range(11):
+        imu.publish(gyro_sample(0.1 * k, 0.5))
+        spin(executor, lambda: False, timeout=0.05)
+        enc.publish(ticks(0.1 * k, 0, 0))
+        spin(executor, lambda: False, timeout=0.05)
+    assert spin(executor, lambda: len(odom) >= 11)
+    q = odom[-1].pose.pose.orientation
+    assert 2.0 * math.atan2(q.z, q.w) == pytest.approx(0.5, abs=1e-9)
 
 
 def gyro_sample(t, rate):
