@@ -238,6 +238,17 @@ def test_ej8_4_plan_wires_the_arm_loop():
     assert reference.parameters['duration'] > scenario.duration
 
 
+@pytest.mark.parametrize('name, on_sim_time', [
+    ('demo', {'encoder_emulator', 'odometry', 'path_tracker'}),
+    ('ej8_4', set()),
+])
+def test_only_nodes_that_read_the_clock_run_on_sim_time(name, on_sim_time):
+    # The simulator owns the time; the one-shot publishers and the joint controller (which
+    # answers each state with its stamp) never read their clocks, so they do not take /clock.
+    nodes = plan_run(load_scenario(str(SHIPPED / f'{name}.yaml')))
+    assert {node.name for node in nodes if node.use_sim_time} == on_sim_time
+
+
 def test_arm_runs_record_the_arm_topics():
     scenario = load_scenario(str(SHIPPED / 'puma_computed_torque_friction.yaml'))
     assert recorded_topics(scenario) == ARM_RECORDED_TOPICS

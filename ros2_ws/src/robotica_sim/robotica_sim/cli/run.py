@@ -113,8 +113,8 @@ def _prepare(args: argparse.Namespace, scenario, run_dir: Path) -> list[NodeSpec
     nodes = [recorder] + nodes
     params = {}
     for spec in nodes:
-        sim_time = spec.name != 'simulator'   # the simulator owns the time
-        params[spec.name] = {'ros__parameters': {'use_sim_time': sim_time, **spec.parameters}}
+        params[spec.name] = {'ros__parameters': {'use_sim_time': spec.use_sim_time,
+                                                 **spec.parameters}}
     params_file.write_text(yaml.safe_dump(params, sort_keys=False))
     return nodes
 
