@@ -124,7 +124,8 @@ class OdometryNode(Node):
                                    read_only=True)
         self._last_ticks: tuple[int, int, float] | None = None
         self._twist = (0.0, 0.0)
-        self._gyro_samples: list[tuple[float, float, float]] = []   # (t, rate, variance) unused
+        # (t, rate, variance) of the gyro samples not yet integrated
+        self._gyro_samples: list[tuple[float, float, float]] = []
         self._newest_gyro_t: float | None = None   # [s] stamp of the newest gyro sample received
         self._newest_compass_t: float | None = None   # [s] and of the newest compass reading
         self._gyro_t = 0.0                          # [s] the gyro is integrated up to here
