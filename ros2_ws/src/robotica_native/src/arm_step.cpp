@@ -7,8 +7,9 @@
 //
 // with the torque held over the step, then stops each joint at its limits: q is clamped into
 // [lower, upper] and a velocity pointing further out is zeroed (infinite limits: no stop). Every
-// intermediate vector is allocated once, with the model: a step allocates no memory. B holds the viscous friction of the dyn table referred to
-// the joint (G² B) plus any unmodelled viscous friction, Tc± the Coulomb friction (|G| Tc±).
+// intermediate vector is allocated once, with the model: a step allocates no memory. B holds
+// the viscous friction of the dyn table referred to the joint (G² B) plus any unmodelled
+// viscous friction, Tc± the Coulomb friction (|G| Tc±).
 // The model is the Pinocchio model robotica_kin.pinocchio_model builds (motor inertia as
 // armature, a payload already added), serialised by Pinocchio in Python and read here; its
 // joints are one-dimensional (revolute or prismatic), so q and q' have the same size. The
