@@ -32,7 +32,6 @@ setup(
             'compass_emulator = robotica_sim.nodes.compass_emulator:main',
             'gps_emulator = robotica_sim.nodes.gps_emulator:main',
             'odometry = robotica_sim.nodes.odometry:main',
-            'path_publisher = robotica_sim.nodes.path_publisher:main',
             'recorder = robotica_sim.nodes.recorder:main',
             'robotica = robotica_sim.cli.main:main',
         ],

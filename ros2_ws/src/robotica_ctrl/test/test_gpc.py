@@ -18,11 +18,12 @@ import math
 
 import numpy as np
 import pytest
-from robotica_ctrl.mobile.gpc import (
-    diophantine, GpcController, GpcPathTracker, GpcTrackerCommand, GpcTrackerParams,
-    lateral_carima_model, prediction_polynomials, soften_reference, step_response_matrix)
+from robotica_ctrl.mobile.gpc import (diophantine, GpcController, GpcPathTracker,
+                                      GpcTrackerCommand, GpcTrackerParams, lateral_carima_model,
+                                      prediction_polynomials, soften_reference,
+                                      step_response_matrix)
 from robotica_ctrl.mobile.path import PolylinePath
-from robotica_ctrl.path_shapes import straight_line
+from robotica_ctrl.mobile.path_shapes import straight_line
 from robotica_kin.integrators import rk4_step
 from scipy.signal import cont2discrete, lfilter, ss2tf
 

@@ -1,11 +1,11 @@
-"""Tests of robotica_ctrl.path_shapes: sampled reference paths for the trackers of book ch. 9."""
+"""Tests of robotica_ctrl.mobile.path_shapes: sampled reference paths for the ch. 9 trackers."""
 
 import math
 
 import numpy as np
 import pytest
 
-from robotica_ctrl.path_shapes import circle, figure_eight, rounded_rectangle, straight_line
+from robotica_ctrl.mobile.path_shapes import circle, figure_eight, rounded_rectangle, straight_line
 
 
 def polyline_length(points):

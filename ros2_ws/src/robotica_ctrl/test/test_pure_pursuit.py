@@ -13,9 +13,9 @@ import numpy as np
 import pytest
 
 from robotica_ctrl.mobile.path import PolylinePath
-from robotica_ctrl.mobile.pure_pursuit import (
-    curvature_to_point, PurePursuit, PurePursuitCommand, PurePursuitParams)
-from robotica_ctrl.path_shapes import rounded_rectangle, straight_line
+from robotica_ctrl.mobile.path_shapes import rounded_rectangle, straight_line
+from robotica_ctrl.mobile.pure_pursuit import (curvature_to_point, PurePursuit, PurePursuitCommand,
+                                               PurePursuitParams)
 
 
 def simulate(tracker, pose, duration, dt):

@@ -10,9 +10,9 @@ import math
 import numpy as np
 import pytest
 from robotica_ctrl.mobile.path import PolylinePath
+from robotica_ctrl.mobile.path_shapes import straight_line, unicycle_trajectory
 from robotica_ctrl.mobile.tracking_laws import (law_defaults, LAW_PARAMETERS, LAWS, make_law,
                                                 TimedPath)
-from robotica_ctrl.path_shapes import straight_line, unicycle_trajectory
 
 STEP = 0.01   # [s]
 

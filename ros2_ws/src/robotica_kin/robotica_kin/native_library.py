@@ -3,7 +3,7 @@ robotica's compiled inner loops (package ``robotica_native``), loaded with ctype
 
 One shared library on Pinocchio's C++ API with a plain C interface: ``rik_*`` is the search of
 :mod:`robotica_kin.ik` (ik_search.cpp), ``ras_*`` the RK4 step of
-:mod:`robotica_sim.arm_simulation` with its joint stops (arm_step.cpp). The callers validate
+:mod:`robotica_sim.simulation.arm` with its joint stops (arm_step.cpp). The callers validate
 every input; the functions here only load the library and describe its signatures.
 """
 

@@ -1,9 +1,10 @@
 """
-robotica_sim: simulators, sensor emulators, odometry, the bag recorder and the robotica command.
+robotica_sim: simulators, sensor emulators, bags, runs, grading and the robotica command.
 
-Pure cores (no rclpy) are the top-level modules; the ROS 2 shells are in ``robotica_sim.nodes``
-and the command line in ``robotica_sim.cli``.
+One folder a concern: ``simulation`` (vehicle, arm), ``sensors`` (one model a sensor),
+``bags`` (write, inspect, play, repair), ``runs`` (scenario, plan, supervisor), ``grading``
+(series, metrics, rubric, summary, report, figures), ``benchmarks``; the ROS 2 shells are in
+``nodes`` and the command line in ``cli``.
 """
 
-__all__ = ['allan', 'compass_model', 'encoder_model', 'gps_model', 'gyro_model', 'run_summary',
-           'scenario', 'vehicle_simulation']
+__all__ = ['bags', 'benchmarks', 'cli', 'grading', 'nodes', 'runs', 'sensors', 'simulation']

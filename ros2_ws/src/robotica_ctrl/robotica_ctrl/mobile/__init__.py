@@ -1,7 +1,8 @@
 """
 Mobile-robot path tracking (book ch. 9): path geometry and the tracking laws.
 
-:mod:`robotica_ctrl.mobile.path` projects a pose onto a polyline path; the laws turn poses into
+:mod:`robotica_ctrl.mobile.path` projects a pose onto a polyline path,
+:mod:`robotica_ctrl.mobile.path_shapes` samples the reference shapes; the laws turn poses into
 velocity commands: :mod:`~robotica_ctrl.mobile.pure_pursuit` (§9.3.1),
 :mod:`~robotica_ctrl.mobile.trajectory_tracking` (§9.4.2, Canudas de Wit et al.),
 :mod:`~robotica_ctrl.mobile.frenet_path_following` (§9.4.3–9.4.4),
@@ -14,4 +15,4 @@ without feedback).
 """
 
 __all__ = ['adaptive_lookahead', 'frenet_path_following', 'gpc', 'open_loop', 'path',
-           'pure_pursuit', 'quintic_tracker', 'reactive', 'trajectory_tracking']
+           'path_shapes', 'pure_pursuit', 'quintic_tracker', 'reactive', 'trajectory_tracking']

@@ -32,13 +32,13 @@ from rclpy.parameter import Parameter
 from robotica_ctrl.joint_control import (ComputedTorque, ComputedTorqueGains, DecoupledPID,
                                          JointControlLaw, JointReference, JointState, PIDGains)
 from robotica_ctrl.trajectory.sampled_trajectory import SampledTrajectory
-from robotica_kin.nodes.convert import seconds_to_stamp, stamp_to_seconds
-from robotica_kin.nodes.dh_messages import dynamic_robot_from_parameters
-from robotica_kin.nodes.entry_point import run_node
-from robotica_kin.nodes.parameters import declare
-from robotica_kin.nodes.qos import (COMMAND_PUB_QOS, INPUT_QOS_OVERRIDES, LATCHED_QOS,
-                                    STREAM_PUB_QOS, STREAM_SUB_QOS)
 from robotica_kin.robots import ROBOT_NAMES
+from robotica_kin.ros.convert import seconds_to_stamp, stamp_to_seconds
+from robotica_kin.ros.dh_messages import dynamic_robot_from_parameters
+from robotica_kin.ros.entry_point import run_node
+from robotica_kin.ros.parameters import declare
+from robotica_kin.ros.qos import (COMMAND_PUB_QOS, INPUT_QOS_OVERRIDES, LATCHED_QOS,
+                                  STREAM_PUB_QOS, STREAM_SUB_QOS)
 from robotica_msgs.msg import JointControllerState
 from sensor_msgs.msg import JointState as JointStateMsg
 from std_msgs.msg import Float64MultiArray

@@ -24,10 +24,10 @@ from rclpy.node import Node
 from rclpy.parameter import Parameter
 from robotica_ctrl.trajectory import parab, pol3, pol5
 from robotica_ctrl.trajectory.sinusoid import sinusoid
-from robotica_kin.nodes.convert import seconds_to_stamp
-from robotica_kin.nodes.entry_point import run_node
-from robotica_kin.nodes.parameters import declare
-from robotica_kin.nodes.qos import LATCHED_QOS
+from robotica_kin.ros.convert import seconds_to_stamp
+from robotica_kin.ros.entry_point import run_node
+from robotica_kin.ros.parameters import declare
+from robotica_kin.ros.qos import LATCHED_QOS
 from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
 
 GENERATORS = ('sine', 'pol3', 'pol5', 'parab')

@@ -40,11 +40,11 @@ from robotica_ctrl.mobile.open_loop import OpenLoopProfile
 from robotica_ctrl.mobile.path import PolylinePath
 from robotica_ctrl.mobile.tracking_laws import (LAW_PARAMETERS, LAWS, make_law,
                                                 steering_angle, TrackingLaw)
-from robotica_kin.nodes.convert import path_points, pose2d_from_odometry, stamp_to_seconds
-from robotica_kin.nodes.entry_point import run_node
-from robotica_kin.nodes.parameters import declare
-from robotica_kin.nodes.qos import (COMMAND_PUB_QOS, INPUT_QOS_OVERRIDES, LATCHED_QOS,
-                                    STREAM_PUB_QOS, STREAM_SUB_QOS)
+from robotica_kin.ros.convert import path_points, pose2d_from_odometry, stamp_to_seconds
+from robotica_kin.ros.entry_point import run_node
+from robotica_kin.ros.parameters import declare
+from robotica_kin.ros.qos import (COMMAND_PUB_QOS, INPUT_QOS_OVERRIDES, LATCHED_QOS,
+                                  STREAM_PUB_QOS, STREAM_SUB_QOS)
 from robotica_msgs.msg import TrackingError, VehicleCommand
 
 NODE_LAWS = (*LAWS, 'open_loop')

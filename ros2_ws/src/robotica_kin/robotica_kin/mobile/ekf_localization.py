@@ -684,7 +684,7 @@ class EkfLocalization:
 
         * ``white_variance`` σ_w² · I₂ if given;
         * else R - σ_b² I₂, i.e. ``R`` is read as the total covariance of the fix (bias plus
-          white, what a receiver or :mod:`robotica_sim.gps_model` reports), with its
+          white, what a receiver or :mod:`robotica_sim.sensors.gps` reports), with its
           eigenvalues clipped from below at the floor
           ``WHITE_VARIANCE_FLOOR_RATIO`` · σ_b² = 0.01 σ_b² (a white σ of at least 10 % of
           σ_b) so that R_white stays positive definite when R <= σ_b² I₂.

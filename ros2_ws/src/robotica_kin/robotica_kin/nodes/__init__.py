@@ -1,3 +1,3 @@
-"""ROS 2 shells of robotica_kin and the message conversions shared by every robotica node."""
+"""ROS 2 nodes of robotica_kin: forward kinematics and the inverse kinematics server."""
 
-__all__ = ['convert', 'entry_point', 'parameters', 'qos']
+__all__ = ['fk_node', 'ik_server']

@@ -19,12 +19,12 @@ from geometry_msgs.msg import PoseArray, PoseStamped
 from rclpy.node import Node
 from rclpy.parameter import Parameter
 from robotica_kin.forward_kinematics import fkine, link_frames
-from robotica_kin.nodes.dh_messages import (dh_table_message, pose_message, request_robot,
-                                            robot_from_parameters)
-from robotica_kin.nodes.entry_point import run_node
-from robotica_kin.nodes.parameters import declare
-from robotica_kin.nodes.qos import LATCHED_QOS, STREAM_PUB_QOS, STREAM_SUB_QOS
 from robotica_kin.robots import ROBOT_NAMES
+from robotica_kin.ros.dh_messages import (dh_table_message, pose_message, request_robot,
+                                          robot_from_parameters)
+from robotica_kin.ros.entry_point import run_node
+from robotica_kin.ros.parameters import declare
+from robotica_kin.ros.qos import LATCHED_QOS, STREAM_PUB_QOS, STREAM_SUB_QOS
 from robotica_msgs.msg import DHTable
 from robotica_msgs.srv import ForwardKinematics
 from sensor_msgs.msg import JointState

@@ -16,10 +16,10 @@ from numpy.linalg import LinAlgError
 from rclpy.node import Node
 from rclpy.parameter import Parameter
 from robotica_kin.ik import ikine_solve
-from robotica_kin.nodes.dh_messages import pose_matrix, request_robot, robot_from_parameters
-from robotica_kin.nodes.entry_point import run_node
-from robotica_kin.nodes.parameters import declare
 from robotica_kin.robots import ROBOT_NAMES
+from robotica_kin.ros.dh_messages import pose_matrix, request_robot, robot_from_parameters
+from robotica_kin.ros.entry_point import run_node
+from robotica_kin.ros.parameters import declare
 from robotica_msgs.srv import InverseKinematics
 
 DEFAULT_STOL = 1e-6      # pose-error tolerance used when a request gives 0

@@ -4,13 +4,13 @@ Maintain recorded bags: ``robotica bag repair BAG``.
 ``repair`` makes a bag readable again after its recorder was killed (SIGKILL, power cut, a
 crash) before it closed the bag: every complete message is kept, the files are finished, and
 ``metadata.yaml`` is rebuilt from them (the originals are kept as ``*.mcap.broken``). See
-:mod:`robotica_sim.bag_repair`.
+:mod:`robotica_sim.bags.repair`.
 """
 import argparse
 from pathlib import Path
 import sys
 
-from robotica_sim.bag_repair import repair_bag, RepairError
+from robotica_sim.bags.repair import repair_bag, RepairError
 
 HELP = 'repair a bag whose recorder was killed (robotica bag repair BAG)'
 EPILOG = """examples:

@@ -3,16 +3,16 @@ Benchmarks of robotica, printed as a table (Markdown, ready for the README) or J
 
 ``robotica bench arm`` measures the manipulator loop (PUMA 560 at 1 kHz under computed torque):
 the pure core, the DDS round trip that bounds a lockstep loop, and the full ROS loop; see
-:mod:`robotica_sim.arm_benchmark`. ``robotica bench kin`` times ``fkine``, ``jacob0`` and
+:mod:`robotica_sim.benchmarks.arm`. ``robotica bench kin`` times ``fkine``, ``jacob0`` and
 ``ikine`` of the PUMA 560 and the planar 3R per call and batched, next to a plain NumPy
 baseline (the product of Craig's link matrices, and HEMERO's pseudo-inverse ``ikine``) measured
 in the same run; see
-:mod:`robotica_sim.kinematics_benchmark`. ``robotica bench tracking`` runs every tracking law
+:mod:`robotica_sim.benchmarks.kinematics`. ``robotica bench tracking`` runs every tracking law
 on the differential, tricycle and Ackermann vehicles along four paths, on the true pose and on
 the EKF's (encoders, compass, DGPS), and reports cross-track, heading, settling, control effort
-and the time per ``update`` call; see :mod:`robotica_sim.tracking_benchmark`. ``robotica bench
+and the time per ``update`` call; see :mod:`robotica_sim.benchmarks.tracking`. ``robotica bench
 recorder`` offers the recorder node message rates from 5 000 to 30 000 per second and counts
-what reaches its bag; see :mod:`robotica_sim.recorder_benchmark`.
+what reaches its bag; see :mod:`robotica_sim.benchmarks.recorder`.
 """
 import argparse
 import dataclasses
@@ -22,13 +22,13 @@ import sys
 import time
 
 from robotica_ctrl.mobile.tracking_laws import LAWS
-from robotica_sim.arm_benchmark import core_benchmark, loop_benchmark, round_trip_benchmark
-from robotica_sim.kinematics_benchmark import BenchmarkRow, run_kinematics_benchmark
-from robotica_sim.measurement_row import MeasurementRow
-from robotica_sim.mobile_benchmark import mobile_core_benchmark
-from robotica_sim.recorder_benchmark import RATES, recorder_benchmark
-from robotica_sim.tracking_benchmark import (format_tracking_table, PATHS, plot_tracking,
-                                             POSE_SOURCES, tracking_benchmark, VEHICLES)
+from robotica_sim.benchmarks.arm import core_benchmark, loop_benchmark, round_trip_benchmark
+from robotica_sim.benchmarks.kinematics import BenchmarkRow, run_kinematics_benchmark
+from robotica_sim.benchmarks.measurement_row import MeasurementRow
+from robotica_sim.benchmarks.mobile import mobile_core_benchmark
+from robotica_sim.benchmarks.recorder import RATES, recorder_benchmark
+from robotica_sim.benchmarks.tracking import (format_tracking_table, PATHS, plot_tracking,
+                                              POSE_SOURCES, tracking_benchmark, VEHICLES)
 
 HELP = ('measure the speed of the kinematics, the arm loop, the mobile loop, the tracking '
         'laws or the recorder (robotica bench kin|arm|mobile|tracking|recorder)')

@@ -22,10 +22,10 @@ import time
 from typing import Any
 
 from ament_index_python.packages import get_package_share_directory, PackageNotFoundError
-from robotica_sim.bag_info import BagError
-from robotica_sim.rubric import Bound, check_metrics, load_rubric, Rubric, RubricError
-from robotica_sim.run_metrics import compute_metrics, METRICS
-from robotica_sim.run_series import load_run, TOPICS
+from robotica_sim.bags.info import BagError
+from robotica_sim.grading.metrics import compute_metrics, METRICS
+from robotica_sim.grading.rubric import Bound, check_metrics, load_rubric, Rubric, RubricError
+from robotica_sim.grading.series import load_run, TOPICS
 
 HELP = 'compute the metrics of recorded runs and check them against a rubric'
 EPILOG = """examples:

@@ -11,7 +11,7 @@ import json
 from pathlib import Path
 import sys
 
-from robotica_sim.bag_info import bag_info, BagError, format_info
+from robotica_sim.bags.info import bag_info, BagError, format_info
 
 HELP = 'show the topics, counts, rates and scenario of a recorded bag'
 EPILOG = """examples:

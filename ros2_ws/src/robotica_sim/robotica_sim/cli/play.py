@@ -16,9 +16,9 @@ from pathlib import Path
 import sys
 import time
 
-from robotica_sim.bag_info import BagError
-from robotica_sim.bag_player import open_playback, parse_remaps, wall_time
-from robotica_sim.bag_types import message_class
+from robotica_sim.bags.info import BagError
+from robotica_sim.bags.player import open_playback, parse_remaps, wall_time
+from robotica_sim.bags.typestore import message_class
 
 HELP = 'republish a bag in time order with /clock'
 EPILOG = """examples:

@@ -19,9 +19,9 @@ from pathlib import Path
 import sys
 import time
 
-from robotica_sim.bag_info import BagError
-from robotica_sim.run_report import default_output, ReportError, write_report
-from robotica_sim.run_series import load_run
+from robotica_sim.bags.info import BagError
+from robotica_sim.grading.report import default_output, ReportError, write_report
+from robotica_sim.grading.series import load_run
 
 HELP = 'draw a recorded run: PNG figures and an HTML page'
 EPILOG = """examples:

@@ -23,10 +23,10 @@ import rclpy
 from rclpy.executors import SingleThreadedExecutor
 from rclpy.qos import QoSProfile, ReliabilityPolicy
 from rclpy.signals import SignalHandlerOptions
-from robotica_sim.process_supervisor import child_environment, ProcessSupervisor
-from robotica_sim.run_plan import NodeSpec, plan_run, recorded_topics
-from robotica_sim.run_summary import summarize_bag
-from robotica_sim.scenario import load_scenario, ScenarioError
+from robotica_sim.grading.summary import summarize_bag
+from robotica_sim.runs.plan import NodeSpec, plan_run, recorded_topics
+from robotica_sim.runs.scenario import load_scenario, ScenarioError
+from robotica_sim.runs.supervisor import child_environment, ProcessSupervisor
 from rosgraph_msgs.msg import Clock
 from std_srvs.srv import Trigger
 import yaml
@@ -159,7 +159,7 @@ def _wait_ready(args, executor, node, supervisor, names) -> None:
         if answer.success:
             _wait_for_graph(args, executor, node, names)
             # The recorder sees its own side of each match; a publisher may match it a moment
-            # later. Streams keep a history for that (robotica_kin.nodes.qos), commands do not:
+            # later. Streams keep a history for that (robotica_kin.ros.qos), commands do not:
             # give the publishers' side of discovery this long to complete.
             settle = time.monotonic() + MATCH_SETTLE
             while time.monotonic() < settle:

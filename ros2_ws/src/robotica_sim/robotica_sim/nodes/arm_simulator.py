@@ -1,7 +1,7 @@
 """
 Arm simulator node: a manipulator's dynamics integrated at a fixed step; it owns the time.
 
-The plant is :class:`~robotica_sim.arm_simulation.ArmSimulation` (Pinocchio ABA, RK4, book
+The plant is :class:`~robotica_sim.simulation.arm.ArmSimulation` (Pinocchio ABA, RK4, book
 §5.7): the robot ``robot`` by name or a HEMERO ``dyn_table``, with friction, torque saturation
 ``tau_max``, joint stops, ``unmodelled_viscous`` friction the controller does not know (App. A)
 and a payload grasped at ``payload.time`` (Ej. 8.4).
@@ -20,14 +20,14 @@ import numpy as np
 from rclpy.experimental import EventsExecutor
 from rclpy.parameter import Parameter
 from robotica_kin.dynamics import DEFAULT_GRAVITY
-from robotica_kin.nodes.convert import seconds_to_stamp
-from robotica_kin.nodes.dh_messages import dynamic_robot_from_parameters
-from robotica_kin.nodes.entry_point import run_node
-from robotica_kin.nodes.parameters import declare
-from robotica_kin.nodes.qos import COMMAND_QOS, STREAM_PUB_QOS
 from robotica_kin.robots import ROBOT_NAMES
-from robotica_sim.arm_simulation import ArmSimulation, ArmSimulationParams
+from robotica_kin.ros.convert import seconds_to_stamp
+from robotica_kin.ros.dh_messages import dynamic_robot_from_parameters
+from robotica_kin.ros.entry_point import run_node
+from robotica_kin.ros.parameters import declare
+from robotica_kin.ros.qos import COMMAND_QOS, STREAM_PUB_QOS
 from robotica_sim.nodes.stepped_simulator import SteppedSimulatorNode
+from robotica_sim.simulation.arm import ArmSimulation, ArmSimulationParams
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64MultiArray
 

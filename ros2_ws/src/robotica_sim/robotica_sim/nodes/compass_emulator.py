@@ -2,7 +2,7 @@
 Compass emulator node: ground-truth yaw -> magnetometer field and compass heading.
 
 Each ``ground_truth/odom`` message gives the true yaw (REP-103, ENU, from east); the reading is
-:class:`robotica_sim.compass_model.CompassModel` (book §7.7: declination, hard- and soft-iron
+:class:`robotica_sim.sensors.compass.CompassModel` (book §7.7: declination, hard- and soft-iron
 deviation, tilt error, white noise, reproducible from ``seed``). Published, with the truth's
 stamp:
 
@@ -20,11 +20,11 @@ import math
 from nav_msgs.msg import Odometry
 from rclpy.experimental import EventsExecutor
 from rclpy.node import Node
-from robotica_kin.nodes.convert import quaternion_to_yaw, yaw_to_quaternion
-from robotica_kin.nodes.entry_point import run_node
-from robotica_kin.nodes.parameters import declare
-from robotica_kin.nodes.qos import STREAM_PUB_QOS, STREAM_REPLAY_SUB_QOS
-from robotica_sim.compass_model import CompassModel, CompassParams, heading_noise_stddev
+from robotica_kin.ros.convert import quaternion_to_yaw, yaw_to_quaternion
+from robotica_kin.ros.entry_point import run_node
+from robotica_kin.ros.parameters import declare
+from robotica_kin.ros.qos import STREAM_PUB_QOS, STREAM_REPLAY_SUB_QOS
+from robotica_sim.sensors.compass import CompassModel, CompassParams, heading_noise_stddev
 from sensor_msgs.msg import Imu, MagneticField
 
 _DEG = math.pi / 180.0

@@ -3,7 +3,7 @@ Encoder emulator node: wheel angles (``joint_states``) -> quadrature counts (``w
 
 Each ``sensor_msgs/JointState`` from the simulator gives the cumulative angles of the two
 odometry wheels; the node publishes one ``robotica_msgs/WheelEncoders`` with the same stamp. Each
-wheel's counter is a :class:`robotica_sim.encoder_model.EncoderModel` (book §7.3.2, slides
+wheel's counter is a :class:`robotica_sim.sensors.encoder.EncoderModel` (book §7.3.2, slides
 §13.6): ``pulses_per_revolution`` × ``decoding`` (×1/×2/×4 quadrature) × ``gear_ratio`` counts
 per wheel revolution, floor quantisation, and edges missed with ``missed_count_probability``
 (reproducible from ``seed``). Wheel-radius and track errors are a mismatch between the simulated
@@ -14,11 +14,11 @@ import math
 import numpy as np
 from rclpy.experimental import EventsExecutor
 from rclpy.node import Node
-from robotica_kin.nodes.entry_point import run_node
-from robotica_kin.nodes.parameters import declare
-from robotica_kin.nodes.qos import STREAM_PUB_QOS, STREAM_REPLAY_SUB_QOS
+from robotica_kin.ros.entry_point import run_node
+from robotica_kin.ros.parameters import declare
+from robotica_kin.ros.qos import STREAM_PUB_QOS, STREAM_REPLAY_SUB_QOS
 from robotica_msgs.msg import WheelEncoders
-from robotica_sim.encoder_model import EncoderModel, EncoderParams
+from robotica_sim.sensors.encoder import EncoderModel, EncoderParams
 from sensor_msgs.msg import JointState
 
 

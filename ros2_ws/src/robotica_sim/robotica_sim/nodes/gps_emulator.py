@@ -3,7 +3,7 @@ GPS emulator node: ground truth -> ``gps/fix`` (sensor_msgs/NavSatFix) with an h
 
 Each ``ground_truth/odom`` message gives the true position in the world frame, taken as the
 local ENU frame of the geodetic origin ``origin.*`` (REP-103/105: x east, y north). The error
-model is :class:`robotica_sim.gps_model.GpsModel` with the receiver ``preset`` (``sa_standalone``
+model is :class:`robotica_sim.sensors.gps.GpsModel` with the receiver ``preset`` (``sa_standalone``
 ~100 m 2DRMS as in the book's SA era, ``standalone`` a few metres, ``dgps`` ~1 m, ``rtk`` ~2 cm):
 time-correlated (Gauss–Markov) plus white error, fixes at the update rate, latency and dropouts,
 reproducible from ``seed``. A fix is published when its latency has elapsed in simulated time,
@@ -19,11 +19,11 @@ import numpy as np
 from rclpy.experimental import EventsExecutor
 from rclpy.node import Node
 from robotica_kin.geodetic import GeodeticOrigin
-from robotica_kin.nodes.convert import seconds_to_stamp, stamp_to_seconds
-from robotica_kin.nodes.entry_point import run_node
-from robotica_kin.nodes.parameters import declare
-from robotica_kin.nodes.qos import STREAM_PUB_QOS, STREAM_REPLAY_SUB_QOS
-from robotica_sim.gps_model import gps_preset, GPS_PRESETS, GpsFix, GpsModel
+from robotica_kin.ros.convert import seconds_to_stamp, stamp_to_seconds
+from robotica_kin.ros.entry_point import run_node
+from robotica_kin.ros.parameters import declare
+from robotica_kin.ros.qos import STREAM_PUB_QOS, STREAM_REPLAY_SUB_QOS
+from robotica_sim.sensors.gps import gps_preset, GPS_PRESETS, GpsFix, GpsModel
 from sensor_msgs.msg import NavSatFix, NavSatStatus
 
 

@@ -2,7 +2,7 @@
 Gyroscope emulator node: ground-truth yaw rate -> ``imu/data`` (sensor_msgs/Imu, rates only).
 
 Each ``ground_truth/odom`` message gives the true body rates (a planar vehicle: yaw rate only,
-roll and pitch rates zero); each axis is a :class:`robotica_sim.gyro_model.GyroModel` of the
+roll and pitch rates zero); each axis is a :class:`robotica_sim.sensors.gyro.GyroModel` of the
 grade ``preset`` (book §7.7.3; white noise, Gauss–Markov bias instability, rate random walk,
 turn-on bias, scale factor, saturation, quantisation), reproducible from ``seed``. The sample
 period is the time between two truth messages (the first message only starts the clock). The
@@ -15,11 +15,11 @@ from nav_msgs.msg import Odometry
 import numpy as np
 from rclpy.experimental import EventsExecutor
 from rclpy.node import Node
-from robotica_kin.nodes.convert import stamp_to_seconds
-from robotica_kin.nodes.entry_point import run_node
-from robotica_kin.nodes.parameters import declare
-from robotica_kin.nodes.qos import STREAM_PUB_QOS, STREAM_REPLAY_SUB_QOS
-from robotica_sim.gyro_model import GYRO_PRESETS, GyroModel
+from robotica_kin.ros.convert import stamp_to_seconds
+from robotica_kin.ros.entry_point import run_node
+from robotica_kin.ros.parameters import declare
+from robotica_kin.ros.qos import STREAM_PUB_QOS, STREAM_REPLAY_SUB_QOS
+from robotica_sim.sensors.gyro import GYRO_PRESETS, GyroModel
 from sensor_msgs.msg import Imu
 
 

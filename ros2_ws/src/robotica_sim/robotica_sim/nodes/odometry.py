@@ -21,7 +21,7 @@ it is pure dead reckoning with a growing covariance. Measurements are applied wh
 arrive, except that one newer than the estimate waits until an encoder reading reaches its
 time; a fix's latency (0.1 s for DGPS) is not compensated.
 The gyro, compass and GPS are subscribed transient-local (a late match replays the
-publisher's history, robotica_kin.nodes.qos); the encoder readings volatile: the first one the
+publisher's history, robotica_kin.ros.qos); the encoder readings volatile: the first one the
 node receives starts the estimate, and anything older is dropped, so that a restarted node does
 not apply stale history. With the heading from the gyro, the first reading is not answered
 before a gyro publisher is matched, and each later one waits for the gyro sample (and with
@@ -39,11 +39,11 @@ from robotica_kin.geodetic import GeodeticOrigin
 from robotica_kin.mobile.ekf_localization import (EkfLocalization, increment_between_poses,
                                                   OdometryNoise)
 from robotica_kin.mobile.odometry import odometry_increment, ODOMETRY_METHODS
-from robotica_kin.nodes.convert import odometry_message, quaternion_to_yaw, stamp_to_seconds
-from robotica_kin.nodes.entry_point import run_node
-from robotica_kin.nodes.parameters import declare
-from robotica_kin.nodes.qos import (INPUT_QOS_OVERRIDES, STREAM_PUB_QOS, STREAM_REPLAY_SUB_QOS,
-                                    STREAM_SUB_QOS)
+from robotica_kin.ros.convert import odometry_message, quaternion_to_yaw, stamp_to_seconds
+from robotica_kin.ros.entry_point import run_node
+from robotica_kin.ros.parameters import declare
+from robotica_kin.ros.qos import (INPUT_QOS_OVERRIDES, STREAM_PUB_QOS, STREAM_REPLAY_SUB_QOS,
+                                  STREAM_SUB_QOS)
 from robotica_msgs.msg import WheelEncoders
 from sensor_msgs.msg import Imu, NavSatFix, NavSatStatus
 

@@ -3,7 +3,7 @@ Recorder node: every topic of a run, serialized, into a crash-safe rosbag2 direc
 
 Subscribes to the topics named in ``topics`` (or, when empty, to every topic it discovers)
 with ``raw=True``, so messages are written as received (CDR) by
-:class:`robotica_sim.bag_writer.BagWriter` into ``output/`` (``metadata.yaml`` + ``.mcap``
+:class:`robotica_sim.bags.writer.BagWriter` into ``output/`` (``metadata.yaml`` + ``.mcap``
 files), readable by ``rosbags``, ``mcap`` and rosbag2. Each topic's QoS follows what its
 publishers offer, as rosbag2 does (best effort and transient-local only when every publisher
 offers them); the offered profiles and the type hash are stored with the topic. Files named in
@@ -31,12 +31,12 @@ from rclpy.experimental import EventsExecutor
 from rclpy.node import Node
 from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
 from rclpy.signals import SignalHandlerOptions
-from robotica_kin.nodes.entry_point import run_node
-from robotica_kin.nodes.parameters import declare
-from robotica_sim.bag_metadata import qos_to_dict
-from robotica_sim.bag_types import ensure_type, jazzy_typestore, message_class
-from robotica_sim.bag_writer import BagWriter, COMPRESSION
-from robotica_sim.software_versions import software_versions
+from robotica_kin.ros.entry_point import run_node
+from robotica_kin.ros.parameters import declare
+from robotica_sim.bags.metadata import qos_to_dict
+from robotica_sim.bags.typestore import ensure_type, jazzy_typestore, message_class
+from robotica_sim.bags.writer import BagWriter, COMPRESSION
+from robotica_sim.runs.software_versions import software_versions
 from std_srvs.srv import Trigger
 import yaml
 

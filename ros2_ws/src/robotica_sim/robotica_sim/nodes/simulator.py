@@ -21,13 +21,13 @@ from nav_msgs.msg import Odometry
 from rclpy.experimental import EventsExecutor
 from robotica_kin.mobile.vehicles import (STEERED_TYPES, vehicle_kinematics, VEHICLE_TYPES,
                                           VehicleGeometry)
-from robotica_kin.nodes.convert import odometry_message, seconds_to_stamp
-from robotica_kin.nodes.entry_point import run_node
-from robotica_kin.nodes.parameters import declare
-from robotica_kin.nodes.qos import COMMAND_QOS, STREAM_PUB_QOS
+from robotica_kin.ros.convert import odometry_message, seconds_to_stamp
+from robotica_kin.ros.entry_point import run_node
+from robotica_kin.ros.parameters import declare
+from robotica_kin.ros.qos import COMMAND_QOS, STREAM_PUB_QOS
 from robotica_msgs.msg import VehicleCommand
 from robotica_sim.nodes.stepped_simulator import SteppedSimulatorNode
-from robotica_sim.vehicle_simulation import VehicleSimulation, VehicleSimulationParams
+from robotica_sim.simulation.vehicle import VehicleSimulation, VehicleSimulationParams
 from sensor_msgs.msg import JointState
 
 GEOMETRY_PARAMETERS = (

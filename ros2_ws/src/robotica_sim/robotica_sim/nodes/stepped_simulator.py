@@ -36,11 +36,11 @@ from rclpy.clock import Clock as WallClock, ClockType
 from rclpy.duration import Duration
 from rclpy.executors import Executor
 from rclpy.node import Node
-from robotica_kin.nodes.convert import seconds_to_stamp
-from robotica_kin.nodes.parameters import declare
-from robotica_kin.nodes.qos import STREAM_PUB_QOS, STREAM_REPLAY_SUB_QOS
+from robotica_kin.ros.convert import seconds_to_stamp
+from robotica_kin.ros.parameters import declare
+from robotica_kin.ros.qos import STREAM_PUB_QOS, STREAM_REPLAY_SUB_QOS
 from robotica_msgs.msg import SimulatorStatus
-from robotica_sim.bag_types import message_class
+from robotica_sim.bags.typestore import message_class
 from rosgraph_msgs.msg import Clock
 from std_srvs.srv import Trigger
 

@@ -8,7 +8,7 @@ import math
 
 import pytest
 from rclpy.qos import QoSProfile, ReliabilityPolicy
-from robotica_kin.nodes.qos import STREAM_PUB_QOS
+from robotica_kin.ros.qos import STREAM_PUB_QOS
 from robotica_msgs.msg import WheelEncoders
 from sensor_msgs.msg import JointState
 

@@ -11,7 +11,7 @@ import math
 from nav_msgs.msg import Odometry
 import pytest
 from rclpy.qos import QoSProfile, ReliabilityPolicy
-from robotica_kin.nodes.qos import STREAM_PUB_QOS
+from robotica_kin.ros.qos import STREAM_PUB_QOS
 from sensor_msgs.msg import NavSatFix, NavSatStatus
 
 pytestmark = pytest.mark.ros

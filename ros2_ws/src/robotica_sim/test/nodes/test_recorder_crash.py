@@ -12,8 +12,8 @@ import time
 
 import pytest
 from rclpy.qos import QoSProfile, ReliabilityPolicy
-from robotica_sim.bag_info import bag_info, BagError
-from robotica_sim.bag_repair import repair_bag
+from robotica_sim.bags.info import bag_info, BagError
+from robotica_sim.bags.repair import repair_bag
 from rosbags.highlevel import AnyReader
 from std_msgs.msg import Float64
 from std_srvs.srv import Trigger

@@ -1,0 +1,172 @@
+"""
+Repair a bag whose recorder died before closing it (``robotica bag repair``).
+
+A killed :class:`robotica_sim.bags.writer.BagWriter` leaves MCAP files without their summary
+(the last one also without its footer, possibly ending inside a record) and no
+``metadata.yaml``. The repair reads each file's records in order with ``mcap``'s stream reader
+(CRCs checked) up to the first one that is incomplete, writes a finished copy of the file
+holding every complete message, keeps the original as ``<file>.broken``, and writes
+``metadata.yaml`` from what was read: topics (type, definition, offered QoS, type hash, counts),
+files, and the run's ``custom_data`` (from the ``robotica`` metadata record of the first file).
+The effect of ``ros2 bag reindex`` plus ``mcap recover``.
+"""
+from dataclasses import dataclass, field
+import os
+from pathlib import Path
+import re
+import struct
+
+from mcap.exceptions import McapError
+from mcap.records import Channel, Header, Message, Metadata, Schema
+from mcap.stream_reader import StreamReader
+from mcap.writer import CompressionType, Writer
+from robotica_sim.bags.metadata import (bag_metadata, FileRecord, METADATA_FILE,
+                                        qos_from_yaml, QOS_KEY, TopicRecord, TYPE_HASH_KEY,
+                                        write_metadata)
+from robotica_sim.bags.writer import CHUNK_SIZE, CUSTOM_DATA_RECORD, LIBRARY
+
+BROKEN_SUFFIX = '.broken'
+# What a truncated or torn record raises while it is parsed or decompressed.
+READ_ERRORS = (McapError, EOFError, struct.error, ValueError, KeyError, IndexError,
+               UnicodeDecodeError)
+
+
+class RepairError(Exception):
+    """The directory cannot be repaired; the message says why."""
+
+
+@dataclass
+class FileRepair:
+    """What the repair of one file found: messages kept, and why reading stopped."""
+
+    name: str
+    messages: int
+    complete: bool                 # the file had its footer: nothing was cut
+    stopped_at: str = ''           # the error that ended the reading of an incomplete file
+
+
+@dataclass
+class RepairReport:
+    """The outcome of :func:`repair_bag`."""
+
+    bag: Path
+    files: list[FileRepair] = field(default_factory=list)
+    topics: list[TopicRecord] = field(default_factory=list)
+
+    @property
+    def messages(self) -> int:
+        """Return the messages the repaired bag holds."""
+        return sum(f.messages for f in self.files)
+
+
+def _split_index(path: Path) -> int:
+    match = re.search(r'_(\d+)\.mcap$', path.name)
+    return int(match.group(1)) if match else 0
+
+
+def _storage_files(bag: Path) -> list[Path]:
+    files = sorted(bag.glob('*.mcap'), key=lambda p: (_split_index(p), p.name))
+    if not files:
+        raise RepairError(f'{bag}: no .mcap file to repair')
+    return files
+
+
+class _Rewriter:
+    """Copy the complete records of damaged files into finished ones, gathering the metadata."""
+
+    def __init__(self) -> None:
+        self.topics: dict[str, TopicRecord] = {}
+        self.custom_data: dict[str, str] = {}
+
+    def rewrite(self, source: Path, target: Path) -> tuple[FileRecord, FileRepair]:
+        """Copy the complete messages of ``source`` into a new, finished ``target``."""
+        schemas: dict[int, Schema] = {}
+        channels: dict[int, tuple[int, TopicRecord]] = {}   # source id -> (target id, topic)
+        record = FileRecord(target.name)
+        outcome = FileRepair(target.name, 0, complete=False)
+        with open(source, 'rb') as stream, open(target, 'xb') as out:
+            writer = Writer(out, chunk_size=CHUNK_SIZE, compression=CompressionType.ZSTD)
+            writer.start(profile='ros2', library=LIBRARY)
+            target_schemas: dict[int, int] = {}
+            try:
+                for item in StreamReader(stream, validate_crcs=True).records:
+                    if isinstance(item, Header):
+                        continue
+                    if isinstance(item, Schema):
+                        schemas.setdefault(item.id, item)
+                    elif isinstance(item, Channel) and item.id not in channels:
+                        channels[item.id] = self._channel(writer, item, schemas, target_schemas)
+                    elif isinstance(item, Message) and item.channel_id in channels:
+                        channel, topic = channels[item.channel_id]
+                        writer.add_message(channel, item.log_time, item.data, item.publish_time,
+                                           item.sequence)
+                        record.note(item.log_time)
+                        topic.count += 1
+                    elif isinstance(item, Metadata) and item.name == CUSTOM_DATA_RECORD:
+                        self.custom_data.update(item.metadata)
+                        writer.add_metadata(item.name, item.metadata)
+                outcome.complete = True
+            except READ_ERRORS as err:
+                outcome.stopped_at = f'{type(err).__name__}: {err}'.rstrip(': ')
+            writer.finish()
+        outcome.messages = record.count
+        return record, outcome
+
+    def _channel(self, writer: Writer, channel: Channel, schemas: dict[int, Schema],
+                 target_schemas: dict[int, int]) -> tuple[int, TopicRecord]:
+        schema = schemas.get(channel.schema_id)
+        if schema is None:
+            raise McapError(f'channel {channel.topic} names unknown schema {channel.schema_id}')
+        if schema.id not in target_schemas:
+            target_schemas[schema.id] = writer.register_schema(schema.name, schema.encoding,
+                                                               schema.data)
+        topic = self.topics.setdefault(channel.topic, TopicRecord(
+            channel.topic, schema.name, schema.data.decode(),
+            channel.metadata.get(TYPE_HASH_KEY, ''),
+            qos_from_yaml(channel.metadata.get(QOS_KEY, ''))))
+        target = writer.register_channel(channel.topic, channel.message_encoding,
+                                         target_schemas[schema.id], channel.metadata)
+        return target, topic
+
+
+def needs_repair(bag: str | Path) -> bool:
+    """Return whether ``bag`` is a recorder's directory left without ``metadata.yaml``."""
+    bag = Path(bag)
+    return bag.is_dir() and not (bag / METADATA_FILE).exists() and any(bag.glob('*.mcap'))
+
+
+def repair_bag(bag: str | Path) -> RepairReport:
+    """
+    Make the bag directory ``bag`` readable again; return what was kept.
+
+    Raises
+    ------
+    RepairError
+        If ``bag`` is not a directory, has no MCAP file, or already has a ``metadata.yaml``
+        (a bag closed properly needs no repair; remove the file to force one).
+
+    """
+    bag = Path(bag)
+    if not bag.is_dir():
+        raise RepairError(f'{bag}: not a directory')
+    if (bag / METADATA_FILE).exists():
+        raise RepairError(f'{bag}: has a {METADATA_FILE}, so it was closed properly; nothing '
+                          'to repair')
+    rewriter = _Rewriter()
+    report = RepairReport(bag)
+    records = []
+    for source in _storage_files(bag):
+        broken = source.with_name(source.name + BROKEN_SUFFIX)
+        os.replace(source, broken)
+        record, outcome = rewriter.rewrite(broken, source)
+        report.files.append(outcome)
+        if record.count:
+            records.append(record)
+        else:    # nothing complete in it (a split file just begun): left out of the bag
+            source.unlink()
+    if not records:
+        raise RepairError(f'{bag}: no complete message in any file (originals kept as '
+                          f'*.mcap{BROKEN_SUFFIX})')
+    report.topics = list(rewriter.topics.values())
+    write_metadata(bag, bag_metadata('mcap', report.topics, records, rewriter.custom_data))
+    return report

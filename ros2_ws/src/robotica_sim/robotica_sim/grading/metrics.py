@@ -1,0 +1,524 @@
+"""
+Metrics of a recorded run, computed from its :class:`~robotica_sim.grading.series.RunSeries`.
+
+Three groups, each computed when the bag holds its topics (:data:`METRICS` lists every metric
+with its unit, topics and definition; docs/grading.md explains them):
+
+- **mobile** (path tracking, book ch. 9): cross-track and heading errors of the ground truth
+  against the reference ``/path`` (the closest point is searched within a window around the
+  progress, as the trackers do, so that a closed or self-crossing path is followed lap by
+  lap), completion, time, path length, control effort, collisions;
+- **estimation** (book ch. 7): the error of the ``/odom`` estimate against the ground truth,
+  interpolated at the estimate's stamps, and the fraction of samples within 3 sigma;
+- **arm** (book ch. 8): joint errors ``e = q_d - q`` (8.30) of the joint controller, settling
+  time, overshoot, peak torque, mechanical energy, and the tool's Cartesian error by forward
+  kinematics (4.6) of the scenario's arm.
+
+A metric whose topic the bag lacks is *absent* (in :attr:`RunMetrics.absent`, with the
+reason), never zero; a metric that exists but cannot be defined for this run (no map for
+collisions, no step reference for overshoot) is None with a note.
+"""
+from dataclasses import dataclass, field
+import math
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+from robotica_ctrl.mobile.path import PolylinePath
+from robotica_kin.angles import wrap_to_pi
+from robotica_sim.grading.series import RunSeries, Series, TOPICS
+
+__all__ = ['METRICS', 'MetricInfo', 'MetricParams', 'MetricValue', 'RunMetrics',
+           'compute_metrics', 'energy', 'overshoot', 'path_errors', 'pose_errors', 'rms',
+           'settling_time', 'total_variation', 'travelled_length']
+
+MetricValue = float | bool | list[float | None] | None
+"""A metric's value: a number, a flag, one number per joint (None: n/a for that joint)."""
+
+
+@dataclass(frozen=True)
+class MetricParams:
+    """Tunables of the metrics (a rubric's ``parameters`` section overrides them)."""
+
+    goal_tolerance: float = 0.1   # [m] the end is reached within this (arc length, distance)
+    search_window: float = 2.0    # [m] half-width of the closest-point search around progress
+    settling_band: float = 0.02   # [-] settling band, fraction of the joint's reference span
+    sigma_bound: float = 3.0      # [-] consistency bound of the estimate, in std deviations
+
+    def __post_init__(self) -> None:
+        for name in ('goal_tolerance', 'search_window', 'settling_band', 'sigma_bound'):
+            value = getattr(self, name)
+            if isinstance(value, bool) or not isinstance(value, (int, float)) or not (
+                    math.isfinite(value) and value > 0.0):
+                raise ValueError(f'{name} must be a finite number > 0, got {value!r}')
+        if self.settling_band >= 1.0:
+            raise ValueError(f'settling_band must be < 1, got {self.settling_band!r}')
+
+
+@dataclass(frozen=True)
+class MetricInfo:
+    """What a metric means: unit, group, the topics it needs and its definition."""
+
+    unit: str
+    group: str                   # 'run', 'mobile', 'estimation' or 'arm'
+    topics: tuple[str, ...]      # all needed (alternatives are described in ``definition``)
+    definition: str
+    per_joint: bool = False
+
+
+_TRUTH, _PATH, _ODOM = TOPICS['truth'], TOPICS['path'], TOPICS['odom']
+_CONTROLLER, _TORQUES = TOPICS['controller'], TOPICS['torques']
+_JOINTS = TOPICS['joint_states']
+
+METRICS: dict[str, MetricInfo] = {
+    'rms_cross_track': MetricInfo(
+        'm', 'mobile', (_TRUTH, _PATH),
+        'RMS over the ground-truth samples of the signed distance to the path (> 0 left); '
+        'from /path_tracker/tracking_error when the bag lacks the truth or the path'),
+    'max_cross_track': MetricInfo(
+        'm', 'mobile', (_TRUTH, _PATH), 'largest |cross-track error|, as rms_cross_track'),
+    'rms_heading_error': MetricInfo(
+        'rad', 'mobile', (_TRUTH, _PATH),
+        'RMS of the truth heading minus the path tangent heading at the closest point, '
+        'wrapped to (-pi, pi]; from the tracking error topic as rms_cross_track'),
+    'max_heading_error': MetricInfo(
+        'rad', 'mobile', (_TRUTH, _PATH), 'largest |heading error|, as rms_heading_error'),
+    'completion': MetricInfo(
+        '-', 'mobile', (_TRUTH, _PATH),
+        'arc length of the closest path point to the last truth pose / path length, in [0, 1]'),
+    'finished': MetricInfo(
+        'bool', 'mobile', (_TRUTH, _PATH),
+        'true once both the remaining arc length and the distance to the last path point '
+        'were within goal_tolerance (as the trackers decide it); 1 in a rubric'),
+    'time': MetricInfo('s', 'run', (TOPICS['clock'],), 'duration of the run: the last /clock'),
+    'path_length': MetricInfo('m', 'mobile', (_TRUTH,),
+                              'length of the travelled ground-truth polyline'),
+    'rms_angular_command': MetricInfo(
+        'rad/s', 'mobile', (TOPICS['cmd_vel'],), 'RMS of the angular velocity command w'),
+    'angular_command_variation': MetricInfo(
+        'rad/s', 'mobile', (TOPICS['cmd_vel'],),
+        'total variation sum |w[k+1] - w[k]| of the angular velocity command, the integral '
+        'of |dw/dt| dt: large when the command chatters'),
+    'rms_steering': MetricInfo(
+        'rad', 'mobile', (TOPICS['vehicle_command'],), 'RMS of the steering angle command'),
+    'steering_variation': MetricInfo(
+        'rad', 'mobile', (TOPICS['vehicle_command'],),
+        'total variation sum |a[k+1] - a[k]| of the steering angle command'),
+    'rms_trajectory_error': MetricInfo(
+        'm', 'mobile', (_TRUTH, _PATH),
+        'RMS distance from the truth to the timed reference point at the same time (only for '
+        'a /path whose pose stamps increase: a trajectory)'),
+    'max_trajectory_error': MetricInfo(
+        'm', 'mobile', (_TRUTH, _PATH), 'largest distance, as rms_trajectory_error'),
+    'collisions': MetricInfo(
+        'count', 'mobile', (_TRUTH,),
+        "contacts with obstacles of the scenario's map; n/a: no scenario has a map yet"),
+    'rms_position_error': MetricInfo(
+        'm', 'estimation', (_ODOM, _TRUTH),
+        'RMS of the /odom position error against the truth interpolated at the odom stamps'),
+    'max_position_error': MetricInfo(
+        'm', 'estimation', (_ODOM, _TRUTH), 'largest /odom position error'),
+    'rms_odom_heading_error': MetricInfo(
+        'rad', 'estimation', (_ODOM, _TRUTH),
+        'RMS of the /odom heading error, wrapped to (-pi, pi]'),
+    'max_odom_heading_error': MetricInfo(
+        'rad', 'estimation', (_ODOM, _TRUTH), 'largest |/odom heading error|'),
+    'within_3_sigma': MetricInfo(
+        '-', 'estimation', (_ODOM, _TRUTH),
+        'fraction of /odom samples whose x, y and heading errors are all within sigma_bound '
+        '(3) standard deviations of the odom covariance diagonal; n/a without covariance'),
+    'rms_joint_error': MetricInfo(
+        'rad|m', 'arm', (_CONTROLLER,), 'per joint, RMS of e = q_d - q (8.30)',
+        per_joint=True),
+    'max_joint_error': MetricInfo(
+        'rad|m', 'arm', (_CONTROLLER,), 'per joint, largest |e|', per_joint=True),
+    'settling_time': MetricInfo(
+        's', 'arm', (_CONTROLLER,),
+        'per joint, time from the first sample after which |e| stays within the band '
+        'settling_band * max(reference span, |e(0)|); n/a when the last sample is outside',
+        per_joint=True),
+    'overshoot': MetricInfo(
+        '%', 'arm', (_CONTROLLER,),
+        'per joint, 100 * (largest travel of q beyond the final reference) / |final reference '
+        '- q(0)|, for a set-point reference (held over the last quarter of the run)',
+        per_joint=True),
+    'peak_torque': MetricInfo(
+        'N m|N', 'arm', (_TORQUES,), 'per joint, largest |tau| of /joint_torques',
+        per_joint=True),
+    'energy': MetricInfo(
+        'J', 'arm', (_TORQUES, _JOINTS),
+        'integral of sum_j |tau_j qdot_j| dt (trapezoid), tau from /joint_torques, qdot from '
+        '/joint_states interpolated at the torque times'),
+    'rms_cartesian_error': MetricInfo(
+        'm', 'arm', (_CONTROLLER,),
+        'RMS distance between the tool positions of q_d and q = q_d - e, by forward '
+        "kinematics (4.6) of the scenario's arm (two_link_arm: tip at l2 along x2; puma560)"),
+    'max_cartesian_error': MetricInfo(
+        'm', 'arm', (_CONTROLLER,), 'largest tool position error, as rms_cartesian_error'),
+}
+"""Every metric :func:`compute_metrics` knows, by name."""
+
+
+@dataclass(frozen=True)
+class RunMetrics:
+    """The metrics of one run."""
+
+    values: dict[str, MetricValue]   # computed metrics; None: n/a (see notes)
+    notes: dict[str, str] = field(default_factory=dict)   # why n/a, or the data source
+    absent: dict[str, str] = field(default_factory=dict)  # metric -> why the bag cannot give it
+    joint_names: tuple[str, ...] = ()
+
+
+def rms(values: ArrayLike) -> float:
+    """
+    Return the root mean square of ``values`` (any shape, over every element).
+
+    >>> rms([3.0, -3.0, 3.0, -3.0])
+    3.0
+    """
+    a = np.asarray(values, dtype=np.float64)
+    return float(math.sqrt(np.mean(a * a)))
+
+
+def total_variation(u: ArrayLike) -> float:
+    """
+    Return ``sum |u[k+1] - u[k]|``, the integral of ``|du/dt| dt`` of a sampled signal.
+
+    >>> total_variation([0.0, 1.0, -1.0])
+    3.0
+    """
+    return float(np.sum(np.abs(np.diff(np.asarray(u, dtype=np.float64)))))
+
+
+def travelled_length(x: ArrayLike, y: ArrayLike) -> float:
+    """
+    Return the length [m] of the polyline through the points (x, y) [m].
+
+    >>> travelled_length([0.0, 3.0, 3.0], [0.0, 4.0, 5.0])
+    6.0
+    """
+    return float(np.sum(np.hypot(np.diff(np.asarray(x, dtype=np.float64)),
+                                 np.diff(np.asarray(y, dtype=np.float64)))))
+
+
+def path_errors(path: PolylinePath, x: ArrayLike, y: ArrayLike, theta: ArrayLike,
+                window: float) -> tuple[NDArray[np.float64], NDArray[np.float64],
+                                        NDArray[np.float64]]:
+    """
+    Project poses onto a path in order, following the progress (book fig. 9.4, step 1).
+
+    The first pose is projected onto the whole path; each later one within ``window`` [m] of
+    arc length around the previous projection, as the trackers do, so that a closed or
+    self-crossing path is followed lap by lap.
+
+    Parameters
+    ----------
+    path : PolylinePath
+        The reference, in the frame of the poses.
+    x, y, theta : array_like, shape (n,)
+        Poses [m, m, rad], REP-103.
+    window : float
+        Half-width [m] of the search around the progress.
+
+    Returns
+    -------
+    s, cross_track, heading_error : ndarray, shape (n,)
+        Arc length of the closest point [m], signed lateral offset [m] (> 0 left) and the
+        heading minus the tangent heading [rad], wrapped to (-pi, pi].
+
+    Examples
+    --------
+    >>> s, e, h = path_errors(PolylinePath([[0, 0], [4, 0]]), [1.0], [0.5], [0.1], 2.0)
+    >>> s.tolist(), e.tolist(), h.round(6).tolist()
+    ([1.0], [0.5], [0.1])
+
+    """
+    xs, ys = np.asarray(x, dtype=np.float64), np.asarray(y, dtype=np.float64)
+    n = len(xs)
+    s, cross, tangent = np.empty(n), np.empty(n), np.empty(n)
+    hint: float | None = None
+    for k, point in enumerate(np.column_stack([xs, ys])):
+        projection = (path.project(point) if hint is None
+                      else path.project(point, s_hint=hint, window=window))
+        hint = projection.s
+        s[k], cross[k], tangent[k] = hint, projection.cross_track, projection.tangent_heading
+    return s, cross, wrap_to_pi(np.asarray(theta, dtype=np.float64) - tangent)
+
+
+def pose_errors(truth: Series, estimate: Series) -> tuple[NDArray[np.float64], ...]:
+    """
+    Return the errors of ``estimate`` against ``truth`` interpolated at the estimate's stamps.
+
+    Both series have columns ``x``, ``y`` [m] and ``theta`` [rad] in the same frame; the
+    truth's heading is unwrapped before the linear interpolation. Estimate samples outside
+    the truth's time span are left out.
+
+    Returns
+    -------
+    t, ex, ey, etheta : ndarray, shape (m,)
+        Stamps [s] and errors estimate - truth [m, m, rad (wrapped to (-pi, pi])].
+
+    """
+    inside = (estimate.t >= truth.t[0]) & (estimate.t <= truth.t[-1])
+    t = estimate.t[inside]
+    ex = estimate['x'][inside] - np.interp(t, truth.t, truth['x'])
+    ey = estimate['y'][inside] - np.interp(t, truth.t, truth['y'])
+    theta = np.interp(t, truth.t, np.unwrap(truth['theta']))
+    return t, ex, ey, wrap_to_pi(estimate['theta'][inside] - theta)
+
+
+def settling_time(t: ArrayLike, error: ArrayLike, band: float) -> float | None:
+    """
+    Return the time [s] from ``t[0]`` after which ``|error|`` stays within ``band``.
+
+    None when the last sample is outside the band (the error never settles).
+
+    >>> settling_time([0.0, 1.0, 2.0, 3.0], [1.0, 0.01, 0.5, 0.01], 0.02)
+    3.0
+    >>> settling_time([0.0, 1.0], [0.0, 1.0], 0.02) is None
+    True
+    """
+    times = np.asarray(t, dtype=np.float64)
+    outside = np.flatnonzero(np.abs(np.asarray(error, dtype=np.float64)) > band)
+    if len(outside) == 0:
+        return 0.0
+    if outside[-1] == len(times) - 1:
+        return None
+    return float(times[outside[-1] + 1] - times[0])
+
+
+def overshoot(q: ArrayLike, q_final: float) -> float | None:
+    """
+    Return the overshoot [%] of a joint moving from ``q[0]`` to the set point ``q_final``.
+
+    ``100 * max(0, max_t sign(d) (q(t) - q_final)) / |d|`` with ``d = q_final - q[0]``;
+    None when ``d`` is 0 (no move to overshoot).
+
+    >>> overshoot([0.0, 0.8, 1.25, 1.0], 1.0)
+    25.0
+    """
+    qs = np.asarray(q, dtype=np.float64)
+    move = q_final - float(qs[0])
+    if abs(move) <= 1e-12 * max(1.0, abs(q_final)):
+        return None
+    beyond = float(np.max(math.copysign(1.0, move) * (qs - q_final)))
+    return 100.0 * max(0.0, beyond) / abs(move)
+
+
+def energy(t: ArrayLike, tau: ArrayLike, qdot: ArrayLike) -> float:
+    """
+    Return the mechanical energy [J] ``integral sum_j |tau_j qdot_j| dt`` (trapezoid rule).
+
+    ``t`` [s] (n,); ``tau`` [N m | N] and ``qdot`` [rad/s | m/s] (n, joints) at those times.
+
+    >>> energy([0.0, 1.0, 2.0], [[2.0], [2.0], [2.0]], [[1.0], [-1.0], [1.0]])
+    4.0
+    """
+    power = np.sum(np.abs(np.asarray(tau, dtype=np.float64) * np.asarray(qdot, dtype=float)),
+                   axis=1)
+    times = np.asarray(t, dtype=np.float64)
+    return float(np.sum(0.5 * (power[1:] + power[:-1]) * np.diff(times)))
+
+
+def _lacks(run: RunSeries, topics: tuple[str, ...]) -> str:
+    """Return why the run cannot give a metric that needs ``topics``."""
+    missing = [topic for topic in topics if not run.counts.get(topic)]
+    wrong = [f'{topic}: {run.ignored[topic]}' for topic in topics if topic in run.ignored]
+    reasons = []
+    if missing:
+        names = ' and '.join(missing)
+        reasons.append(f'needs topic{"s" if len(missing) > 1 else ""} {names}, which the bag '
+                       'lacks')
+    if wrong:
+        reasons.append(f'cannot use {"; ".join(wrong)}')
+    return '; '.join(reasons) or 'needs data the bag lacks'
+
+
+_TRACKING_FALLBACK = ('rms_cross_track', 'max_cross_track', 'rms_heading_error',
+                      'max_heading_error')
+
+
+def _mobile(run: RunSeries, params: MetricParams, out: RunMetrics) -> None:
+    values, notes = out.values, out.notes
+    truth = run.truth
+    if truth is not None:
+        values['path_length'] = travelled_length(truth['x'], truth['y'])
+        values['collisions'] = None
+        notes['collisions'] = 'the scenario has no map or obstacles'
+    if truth is not None and run.path is not None and len(run.path) >= 2:
+        path = PolylinePath(run.path)
+        s, cross, heading = path_errors(path, truth['x'], truth['y'], truth['theta'],
+                                        params.search_window)
+        values['rms_cross_track'], values['max_cross_track'] = rms(cross), _max_abs(cross)
+        values['rms_heading_error'], values['max_heading_error'] = (rms(heading),
+                                                                    _max_abs(heading))
+        values['completion'] = float(np.clip(s[-1] / path.length, 0.0, 1.0))
+        end_distance = np.hypot(truth['x'] - path.points[-1, 0], truth['y'] - path.points[-1, 1])
+        values['finished'] = bool(np.any(np.maximum(path.length - s, end_distance)
+                                         <= params.goal_tolerance))
+        if run.path_times is not None:
+            distance = np.hypot(truth['x'] - np.interp(truth.t, run.path_times, run.path[:, 0]),
+                                truth['y'] - np.interp(truth.t, run.path_times, run.path[:, 1]))
+            values['rms_trajectory_error'] = rms(distance)
+            values['max_trajectory_error'] = _max_abs(distance)
+        else:
+            out.absent['rms_trajectory_error'] = out.absent['max_trajectory_error'] = (
+                'needs a timed /path (pose stamps increasing: a trajectory), which the bag '
+                'lacks')
+    elif run.tracking_error is not None:
+        cross, heading = run.tracking_error['cross_track'], run.tracking_error['heading']
+        values['rms_cross_track'], values['max_cross_track'] = rms(cross), _max_abs(cross)
+        values['rms_heading_error'], values['max_heading_error'] = (rms(heading),
+                                                                    _max_abs(heading))
+        for name in _TRACKING_FALLBACK:
+            notes[name] = f'from {TOPICS["tracking_error"]} (the bag lacks the truth or path)'
+    cmd = run.cmd
+    if cmd is not None and 'w' in cmd.columns:
+        values['rms_angular_command'] = rms(cmd['w'])
+        values['angular_command_variation'] = total_variation(cmd['w'])
+    if cmd is not None and 'steering' in cmd.columns:
+        values['rms_steering'] = rms(cmd['steering'])
+        values['steering_variation'] = total_variation(cmd['steering'])
+
+
+def _estimation(run: RunSeries, params: MetricParams, out: RunMetrics) -> None:
+    if run.truth is None or run.odom is None:
+        return
+    t, ex, ey, eth = pose_errors(run.truth, run.odom)
+    if len(t) == 0:
+        for name, info in METRICS.items():
+            if info.group == 'estimation':
+                out.absent[name] = 'needs /odom stamps within the time span of the truth'
+        return
+    position = np.hypot(ex, ey)
+    values = out.values
+    values['rms_position_error'], values['max_position_error'] = rms(position), float(
+        np.max(position))
+    values['rms_odom_heading_error'] = rms(eth)
+    values['max_odom_heading_error'] = _max_abs(eth)
+    inside = (run.odom.t >= run.truth.t[0]) & (run.odom.t <= run.truth.t[-1])
+    variances = [run.odom[name][inside] for name in ('var_x', 'var_y', 'var_theta')]
+    if not any(np.any(v > 0.0) for v in variances):
+        values['within_3_sigma'] = None
+        out.notes['within_3_sigma'] = '/odom reports no covariance'
+        return
+    bound = params.sigma_bound
+    within = np.ones(len(t), dtype=bool)
+    for error, variance in zip((ex, ey, eth), variances):
+        within &= np.abs(error) <= bound * np.sqrt(np.maximum(variance, 0.0))
+    values['within_3_sigma'] = float(np.mean(within))
+
+
+def _arm(run: RunSeries, params: MetricParams, out: RunMetrics) -> None:
+    values, notes = out.values, out.notes
+    controller = run.controller
+    if controller is not None and len(controller) > 0:
+        e = controller['position_error']
+        q_d = controller['reference_position']
+        q = q_d - e
+        values['rms_joint_error'] = np.sqrt(np.mean(e * e, axis=0)).tolist()
+        values['max_joint_error'] = np.max(np.abs(e), axis=0).tolist()
+        span = np.maximum(np.ptp(q_d, axis=0), np.abs(e[0]))
+        settling = [settling_time(controller.t, e[:, j], params.settling_band * span[j])
+                    for j in range(e.shape[1])]
+        values['settling_time'] = settling
+        if None in settling:
+            notes['settling_time'] = 'n/a for a joint whose error ends outside the band'
+        late = controller.t >= controller.t[0] + 0.75 * (controller.t[-1] - controller.t[0])
+        held = np.all(np.abs(q_d[late] - q_d[-1]) <= 1e-9 * np.maximum(1.0, np.abs(q_d[-1])),
+                      axis=0)
+        overshoots = [overshoot(q[:, j], float(q_d[-1, j])) if held[j] else None
+                      for j in range(e.shape[1])]
+        values['overshoot'] = overshoots
+        if None in overshoots:
+            notes['overshoot'] = ('n/a for a joint without a set-point reference (held over '
+                                  'the last quarter) or without a move')
+        cartesian = _tool_errors(run.scenario, q_d, q)
+        if isinstance(cartesian, str):
+            out.absent['rms_cartesian_error'] = out.absent['max_cartesian_error'] = cartesian
+        else:
+            values['rms_cartesian_error'] = rms(cartesian)
+            values['max_cartesian_error'] = float(np.max(cartesian))
+    torques = run.torques
+    if torques is not None and len(torques) > 0:
+        values['peak_torque'] = np.max(np.abs(torques['effort']), axis=0).tolist()
+        joints = run.joint_states
+        if joints is not None and joints['velocity'].shape[1] == torques['effort'].shape[1]:
+            qdot = np.column_stack([np.interp(torques.t, joints.t, joints['velocity'][:, j])
+                                    for j in range(joints['velocity'].shape[1])])
+            values['energy'] = energy(torques.t, torques['effort'], qdot)
+        elif joints is not None:
+            out.absent['energy'] = (f'needs as many /joint_states velocities '
+                                    f'({joints["velocity"].shape[1]}) as torques '
+                                    f'({torques["effort"].shape[1]})')
+
+
+def _tool_errors(scenario: dict | None, q_d: NDArray[np.float64],
+                 q: NDArray[np.float64]) -> NDArray[np.float64] | str:
+    """Return |p(q_d) - p(q)| [m] per sample by FK of the scenario's arm, or why it cannot."""
+    arm: Any = (scenario or {}).get('arm')
+    if not isinstance(arm, dict):
+        return "needs the scenario's arm (model) in the bag's metadata, which the bag lacks"
+    # Lazy: robotica_kin's kinematics loads Pinocchio, which only arm runs need.
+    from robotica_kin.dh import dh_model
+    from robotica_kin.forward_kinematics import fkine
+    from robotica_kin.robots import puma560, two_link_arm
+    from robotica_kin.transforms import transl
+    model = arm.get('model', 'puma560')
+    try:
+        if model == 'two_link_arm':
+            lengths = [float(v) for v in arm['lengths']]
+            dh = two_link_arm(1.0, 1.0, *lengths)[0]
+            robot = dh_model(dh, tool=transl(lengths[1], 0.0, 0.0))
+        elif model == 'puma560':
+            robot = puma560()
+        else:
+            return f'needs a known arm model (two_link_arm, puma560), the scenario has {model!r}'
+        if robot.n != q.shape[1]:
+            return f'needs {robot.n} joints for {model}, the controller has {q.shape[1]}'
+        p_d = fkine(robot, q_d)[:, :3, 3]
+        p = fkine(robot, q)[:, :3, 3]
+    except (KeyError, TypeError, ValueError) as err:
+        return f'needs a valid arm in the scenario: {err}'
+    return np.linalg.norm(p_d - p, axis=1)
+
+
+def _max_abs(values: NDArray[np.float64]) -> float:
+    return float(np.max(np.abs(values)))
+
+
+def compute_metrics(run: RunSeries, params: MetricParams | None = None) -> RunMetrics:
+    """
+    Compute every metric the run's topics allow.
+
+    Parameters
+    ----------
+    run : RunSeries
+        The run, from :func:`robotica_sim.grading.series.load_run`.
+    params : MetricParams, optional
+        Goal tolerance, search window, settling band, sigma bound; defaults if None.
+
+    Returns
+    -------
+    RunMetrics
+        ``values`` of the computed metrics (None: n/a, explained in ``notes``), and for every
+        other metric of :data:`METRICS` the reason in ``absent`` ("needs topic Y, which the
+        bag lacks").
+
+    """
+    joints = run.controller if run.controller is not None else run.joint_states
+    out = RunMetrics(values={}, joint_names=joints.names if joints is not None else ())
+    chosen = params or MetricParams()
+    if run.counts.get(TOPICS['clock']):
+        out.values['time'] = run.duration
+    _mobile(run, chosen, out)
+    _estimation(run, chosen, out)
+    _arm(run, chosen, out)
+    for name, info in METRICS.items():
+        if name in out.values or name in out.absent:
+            continue
+        reason = _lacks(run, info.topics)
+        if name in _TRACKING_FALLBACK:
+            reason += f' (or {TOPICS["tracking_error"]})'
+        out.absent[name] = reason
+    return out

@@ -1,0 +1,395 @@
+"""
+The time series of a recorded run: one loader for every command that reads a run's bag.
+
+:func:`load_run` reads a rosbag2 directory (as ``robotica run`` and the ``recorder`` node write
+it) with :func:`robotica_sim.bags.info.open_bag` and returns a :class:`RunSeries`: each known
+topic as a :class:`Series` of float64 NumPy arrays, the reference path, the run's scenario
+(from the metadata's ``custom_data``) and the simulator's last status. ``robotica grade`` and
+``robotica report`` compute from it, so that no other module decodes bags.
+
+Times are seconds of simulated time: a message's header stamp (a topic whose stamps are all
+zero, i.e. unstamped, falls back to its receive times); messages without a header
+(``/cmd_vel``, ``/joint_torques``) use the bag's receive time; ``/clock`` its ``clock`` field.
+Each series is in time order (stable sort by time when received out of order). Poses and
+headings are REP-103 (x forward, y left, θ from the x axis, counter-clockwise); θ is the yaw
+(z rotation) of the message's quaternion.
+"""
+from dataclasses import dataclass, field
+import math
+from operator import attrgetter
+from pathlib import Path
+from typing import Any, Callable, Iterable
+
+import numpy as np
+from numpy.typing import NDArray
+from robotica_sim.bags.info import BagError, open_bag
+import yaml
+
+__all__ = ['MSGTYPES', 'RunSeries', 'Series', 'TOPICS', 'load_run']
+
+_YAML_LOADER = getattr(yaml, 'CSafeLoader', yaml.SafeLoader)   # LibYAML when available
+
+TOPICS = {
+    'clock': '/clock',
+    'path': '/path',
+    'truth': '/ground_truth/odom',
+    'odom': '/odom',
+    'cmd_vel': '/cmd_vel',
+    'vehicle_command': '/vehicle_command',
+    'tracking_error': '/path_tracker/tracking_error',
+    'imu': '/imu/data',
+    'compass': '/compass/heading',
+    'gps': '/gps/fix',
+    'joint_states': '/joint_states',
+    'controller': '/joint_controller/controller_state',
+    'torques': '/joint_torques',
+    'status': '/simulator/status',
+}
+"""The topics :func:`load_run` reads, by the role they play in a run."""
+
+MSGTYPES = {
+    'clock': 'rosgraph_msgs/msg/Clock',
+    'path': 'nav_msgs/msg/Path',
+    'truth': 'nav_msgs/msg/Odometry',
+    'odom': 'nav_msgs/msg/Odometry',
+    'cmd_vel': 'geometry_msgs/msg/Twist',
+    'vehicle_command': 'robotica_msgs/msg/VehicleCommand',
+    'tracking_error': 'robotica_msgs/msg/TrackingError',
+    'imu': 'sensor_msgs/msg/Imu',
+    'compass': 'sensor_msgs/msg/Imu',
+    'gps': 'sensor_msgs/msg/NavSatFix',
+    'joint_states': 'sensor_msgs/msg/JointState',
+    'controller': 'robotica_msgs/msg/JointControllerState',
+    'torques': 'std_msgs/msg/Float64MultiArray',
+    'status': 'robotica_msgs/msg/SimulatorStatus',
+}
+"""The message type each role's topic must have; a topic of another type is ignored."""
+
+
+@dataclass(frozen=True)
+class Series:
+    """
+    Samples of one topic: ``t`` [s] (n,) and named columns, each (n,) or (n, k).
+
+    ``names`` holds the joint names of a joint series (k columns in joint order), else ().
+
+    Examples
+    --------
+    >>> s = Series(np.array([0.0, 0.1]), {'v': np.array([1.0, 2.0])})
+    >>> len(s), s['v'].tolist()
+    (2, [1.0, 2.0])
+
+    """
+
+    t: NDArray[np.float64]
+    columns: dict[str, NDArray[np.float64]]
+    names: tuple[str, ...] = ()
+
+    def __getitem__(self, name: str) -> NDArray[np.float64]:
+        """Return column ``name``; KeyError names the available columns."""
+        try:
+            return self.columns[name]
+        except KeyError:
+            raise KeyError(f'no column {name!r}; available: {", ".join(self.columns)}') from None
+
+    def __len__(self) -> int:
+        """Return the number of samples."""
+        return len(self.t)
+
+
+@dataclass(frozen=True)
+class RunSeries:
+    """
+    Everything :func:`load_run` reads from a run's bag; an absent topic gives None.
+
+    Columns (units; poses in the frame of their message, REP-103):
+
+    - ``truth`` (``/ground_truth/odom``) and ``odom`` (``/odom``): ``x``, ``y`` [m], ``theta``
+      [rad], ``v``, ``vy`` [m/s] (twist in ``base_link``), ``w`` [rad/s]; ``odom`` also
+      ``var_x``, ``var_y`` [m^2], ``var_theta`` [rad^2], the diagonal of its pose covariance.
+    - ``cmd``: from ``/cmd_vel`` (``geometry_msgs/Twist``) ``v`` [m/s], ``w`` [rad/s]; from
+      ``/vehicle_command`` ``v`` [m/s], ``steering`` [rad], ``steering_rate`` [rad/s].
+    - ``tracking_error``: ``cross_track`` [m] (> 0 left of the path), ``heading`` [rad],
+      ``along_track`` [m], ``target_x``, ``target_y`` [m].
+    - ``imu``: ``wz`` [rad/s]; ``compass``: ``theta`` [rad], ``var_theta`` [rad^2];
+      ``gps``: ``latitude``, ``longitude`` [deg], ``altitude`` [m], ``var_e``, ``var_n`` [m^2].
+    - ``joint_states``: ``position`` [rad | m], ``velocity`` [rad/s | m/s], ``effort``
+      [N m | N], each (n, joints); ``controller``: ``reference_position``,
+      ``reference_velocity``, ``position_error`` (e = q_d - q, book (8.30)),
+      ``velocity_error``, ``effort``, each (n, joints); ``torques``: ``effort`` (n, joints).
+    """
+
+    bag: Path
+    scenario: dict | None               # parsed custom_data 'robotica.scenario.yaml'
+    duration: float                     # [s] last /clock (0 if none)
+    counts: dict[str, int]              # messages per topic (every topic of the bag)
+    path: NDArray[np.float64] | None    # (N, 2) [m] /path positions, path frame
+    path_times: NDArray[np.float64] | None  # (N,) [s] pose stamps if strictly increasing
+    truth: Series | None
+    odom: Series | None
+    cmd: Series | None
+    tracking_error: Series | None
+    imu: Series | None
+    compass: Series | None
+    gps: Series | None
+    joint_states: Series | None
+    controller: Series | None
+    torques: Series | None
+    status: dict | None                 # last /simulator/status
+    msgtypes: dict[str, str] = field(default_factory=dict)  # type of every topic of the bag
+    ignored: dict[str, str] = field(default_factory=dict)   # known topic of another type: why
+
+    @property
+    def is_manipulator(self) -> bool:
+        """Return whether this is an arm run: joint states and no ground-truth odometry."""
+        return self.joint_states is not None and self.truth is None
+
+    @property
+    def scenario_name(self) -> str | None:
+        """Return the scenario's ``name`` (None when the bag has no scenario)."""
+        name = (self.scenario or {}).get('name')
+        return None if name is None else str(name)
+
+
+def _stamp(msg: Any) -> float:
+    """Return the header stamp [s] of ``msg``."""
+    stamp = msg.header.stamp
+    return stamp.sec + stamp.nanosec * 1e-9
+
+
+def _times(stamps: NDArray[np.float64], receive: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Return the stamps [s], or the receive times [s] when every stamp is zero (unstamped)."""
+    return receive if not np.any(stamps) else stamps
+
+
+def _yaw(q: Any) -> float:
+    """Return the yaw [rad] (rotation about z) of a quaternion, in (-π, π]."""
+    return math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
+
+
+def _odometry(msg: Any) -> tuple[float, ...]:
+    pose, twist = msg.pose.pose, msg.twist.twist
+    cov = msg.pose.covariance
+    return (_stamp(msg), pose.position.x, pose.position.y, _yaw(pose.orientation),
+            twist.linear.x, twist.linear.y, twist.angular.z, cov[0], cov[7], cov[35])
+
+
+def _truth(msg: Any) -> tuple[float, ...]:
+    return _odometry(msg)[:7]
+
+
+def _twist(msg: Any) -> tuple[float, ...]:
+    return 0.0, msg.linear.x, msg.angular.z   # no header: receive times
+
+
+def _vehicle_command(msg: Any) -> tuple[float, ...]:
+    return _stamp(msg), msg.speed, msg.steering_angle, msg.steering_rate
+
+
+def _tracking_error(msg: Any) -> tuple[float, ...]:
+    return (_stamp(msg), msg.cross_track, msg.heading, msg.along_track, msg.target_point.x,
+            msg.target_point.y)
+
+
+def _imu(msg: Any) -> tuple[float, ...]:
+    return _stamp(msg), msg.angular_velocity.z
+
+
+def _compass(msg: Any) -> tuple[float, ...]:
+    return _stamp(msg), _yaw(msg.orientation), msg.orientation_covariance[8]
+
+
+def _gps(msg: Any) -> tuple[float, ...]:
+    cov = msg.position_covariance   # ENU: [0] east, [4] north
+    return _stamp(msg), msg.latitude, msg.longitude, msg.altitude, cov[0], cov[4]
+
+
+# Scalar series: topic role -> (columns after the stamp, the row extractor).
+_SCALAR: dict[str, tuple[tuple[str, ...], Callable[[Any], tuple[float, ...]]]] = {
+    'truth': (('x', 'y', 'theta', 'v', 'vy', 'w'), _truth),
+    'odom': (('x', 'y', 'theta', 'v', 'vy', 'w', 'var_x', 'var_y', 'var_theta'), _odometry),
+    'cmd_vel': (('v', 'w'), _twist),
+    'vehicle_command': (('v', 'steering', 'steering_rate'), _vehicle_command),
+    'tracking_error': (('cross_track', 'heading', 'along_track', 'target_x', 'target_y'),
+                       _tracking_error),
+    'imu': (('wz',), _imu),
+    'compass': (('theta', 'var_theta'), _compass),
+    'gps': (('latitude', 'longitude', 'altitude', 'var_e', 'var_n'), _gps),
+}
+
+# Joint series: topic role -> (column -> message field).
+_JOINT_FIELDS = {
+    'joint_states': {'position': 'position', 'velocity': 'velocity', 'effort': 'effort'},
+    'controller': {name: name for name in ('reference_position', 'reference_velocity',
+                                           'position_error', 'velocity_error', 'effort')},
+    'torques': {'effort': 'data'},
+}
+
+
+_Columns = dict[str, NDArray[np.float64]]
+
+
+def _in_time_order(t: NDArray[np.float64],
+                   columns: _Columns) -> tuple[NDArray[np.float64], _Columns]:
+    """Return ``t`` and ``columns`` sorted by time (stable), as received when already sorted."""
+    if len(t) < 2 or bool(np.all(np.diff(t) >= 0.0)):
+        return t, columns
+    order = np.argsort(t, kind='stable')
+    return t[order], {name: value[order] for name, value in columns.items()}
+
+
+def _scalar_series(rows: list[tuple[float, ...]], receive: list[int],
+                   columns: tuple[str, ...]) -> Series:
+    data = np.array(rows, dtype=np.float64).reshape(len(rows), len(columns) + 1)
+    t = _times(data[:, 0].copy(), np.array(receive, dtype=np.float64) * 1e-9)
+    return Series(*_in_time_order(t, {name: data[:, i + 1].copy()
+                                      for i, name in enumerate(columns)}))
+
+
+def _joint_matrix(rows: tuple[Any, ...]) -> NDArray[np.float64]:
+    """Stack per-message arrays into (n, k); ragged rows are padded with NaN."""
+    widths = set(map(len, rows))
+    if len(widths) <= 1:
+        return np.array(rows, dtype=np.float64).reshape(len(rows), widths.pop() if widths else 0)
+    out = np.full((len(rows), max(widths)), np.nan)
+    for i, r in enumerate(rows):
+        out[i, :len(r)] = r
+    return out
+
+
+def _joint_series(role: str, msgs: list[tuple[Any, int]]) -> Series:
+    """Build a joint series, reordering every message to the first message's joint order."""
+    attrs = _JOINT_FIELDS[role]
+    get = attrgetter(*attrs.values())
+    rows = [get(msg) for msg, _ in msgs]
+    if len(attrs) == 1:   # attrgetter of one name returns the value itself
+        rows = [(row,) for row in rows]
+    matrices = {column: _joint_matrix(values) for column, values in zip(attrs, zip(*rows))}
+    receive = np.array([r for _, r in msgs], dtype=np.float64) * 1e-9
+    if role == 'torques':   # std_msgs/Float64MultiArray: no header, no names
+        return Series(*_in_time_order(receive, matrices))
+    names_field = 'name' if role == 'joint_states' else 'joint_names'
+    names = list(getattr(msgs[0][0], names_field))
+    for i, (msg, _) in enumerate(msgs):
+        msg_names = getattr(msg, names_field)
+        if msg_names != names and sorted(msg_names) == sorted(names):
+            order = [msg_names.index(n) for n in names]
+            for matrix in matrices.values():
+                if matrix.shape[1] == len(order):
+                    matrix[i] = matrix[i, order]
+    stamps = np.array([_stamp(msg) for msg, _ in msgs], dtype=np.float64)
+    t, columns = _in_time_order(_times(stamps, receive), matrices)
+    return Series(t, columns, tuple(names))
+
+
+def _path(msg: Any) -> tuple[NDArray[np.float64], NDArray[np.float64] | None]:
+    """Return the positions (N, 2) [m] of a nav_msgs/Path and its stamps if increasing."""
+    points = np.array([[p.pose.position.x, p.pose.position.y] for p in msg.poses],
+                      dtype=np.float64).reshape(-1, 2)
+    stamps = np.array([p.header.stamp.sec + p.header.stamp.nanosec * 1e-9 for p in msg.poses],
+                      dtype=np.float64)
+    timed = len(stamps) >= 2 and bool(np.all(np.diff(stamps) > 0.0))
+    return points, stamps if timed else None
+
+
+def _scenario(bag: Path) -> dict | None:
+    """Return the scenario the recorder stored in the metadata's custom_data, or None."""
+    try:
+        metadata = yaml.load((bag / 'metadata.yaml').read_text(), Loader=_YAML_LOADER)
+        custom = metadata['rosbag2_bagfile_information'].get('custom_data') or {}
+        scenario = yaml.load(custom.get('robotica.scenario.yaml') or '', Loader=_YAML_LOADER)
+    except (OSError, KeyError, TypeError, AttributeError, yaml.YAMLError):
+        return None
+    return scenario if isinstance(scenario, dict) else None
+
+
+def load_run(bag: str | Path, topics: Iterable[str] | None = None) -> RunSeries:
+    """
+    Read a run's bag; only the listed topics if given (``/clock`` is always read).
+
+    Parameters
+    ----------
+    bag : str or Path
+        The rosbag2 directory (``metadata.yaml`` and its MCAP file).
+    topics : iterable of str, optional
+        Topic names among :data:`TOPICS`'s values; the others come back as None.
+
+    Returns
+    -------
+    RunSeries
+
+    Raises
+    ------
+    BagError
+        If ``bag`` is not a readable bag (see :func:`robotica_sim.bags.info.open_bag`), or its
+        data cannot be read or decoded.
+    ValueError
+        If ``topics`` names a topic that :func:`load_run` does not know.
+
+    """
+    path = Path(bag)
+    roles_by_topic = {topic: role for role, topic in TOPICS.items()}
+    if topics is not None:
+        wanted = set(topics)
+        unknown = sorted(wanted - set(roles_by_topic))
+        if unknown:
+            raise ValueError(f'unknown topics {unknown}; known: {", ".join(TOPICS.values())}')
+        wanted.add(TOPICS['clock'])
+        roles_by_topic = {t: r for t, r in roles_by_topic.items() if t in wanted}
+    reader = open_bag(path)
+    try:
+        counts = {c.topic: c.msgcount for c in reader.connections}
+        msgtypes = {c.topic: c.msgtype for c in reader.connections}
+        connections = [c for c in reader.connections if c.topic in roles_by_topic
+                       and c.msgtype == MSGTYPES[roles_by_topic[c.topic]]]
+        ignored = {c.topic: f'it has type {c.msgtype}, not {MSGTYPES[roles_by_topic[c.topic]]}'
+                   for c in reader.connections
+                   if c.topic in roles_by_topic and c not in connections}
+        rows: dict[str, list[tuple[float, ...]]] = {role: [] for role in _SCALAR}
+        receive_times: dict[str, list[int]] = {role: [] for role in _SCALAR}
+        joint_msgs: dict[str, list[tuple[Any, int]]] = {role: [] for role in _JOINT_FIELDS}
+        last: dict[str, tuple[Any, bytes]] = {}
+        # An empty connection list would mean "no filter" to rosbags: read nothing then.
+        for connection, receive, raw in (reader.messages(connections=connections)
+                                         if connections else ()):
+            role = roles_by_topic[connection.topic]
+            if role in ('clock', 'status', 'path'):   # only the last one matters
+                last[role] = (connection, raw)
+                continue
+            msg = reader.deserialize(raw, connection.msgtype)
+            if role in _SCALAR:
+                rows[role].append(_SCALAR[role][1](msg))
+                receive_times[role].append(receive)
+            else:
+                joint_msgs[role].append((msg, receive))
+        decoded: dict[str, Any] = {role: reader.deserialize(raw, c.msgtype)
+                                   for role, (c, raw) in last.items()}
+    except Exception as err:   # rosbags raises its own errors, struct and decoding errors
+        raise BagError(f'{path}: cannot read the bag: {err}') from None
+    finally:
+        reader.close()
+    scenario = _scenario(path)
+    series = {role: _scalar_series(r, receive_times[role], _SCALAR[role][0]) if r else None
+              for role, r in rows.items()}
+    joints = {role: _joint_series(role, m) if m else None for role, m in joint_msgs.items()}
+    duration = 0.0
+    if 'clock' in decoded:
+        clock = decoded['clock'].clock
+        duration = clock.sec + clock.nanosec * 1e-9
+    path_points = path_times = None
+    if 'path' in decoded:
+        path_points, path_times = _path(decoded['path'])
+    status = None
+    if 'status' in decoded:
+        s = decoded['status']
+        status = {'step': int(s.step), 'real_time_factor': float(s.real_time_factor),
+                  'lockstep_timeouts': int(s.lockstep_timeouts),
+                  'stale_command_stops': int(s.stale_command_stops),
+                  'finished': bool(s.finished)}
+    return RunSeries(
+        bag=path, scenario=scenario, duration=duration, counts=counts, path=path_points,
+        path_times=path_times, truth=series['truth'], odom=series['odom'],
+        cmd=series['cmd_vel'] if series['cmd_vel'] is not None else series['vehicle_command'],
+        tracking_error=series['tracking_error'], imu=series['imu'], compass=series['compass'],
+        gps=series['gps'], joint_states=joints['joint_states'], controller=joints['controller'],
+        torques=joints['torques'], status=status, msgtypes=msgtypes, ignored=ignored)

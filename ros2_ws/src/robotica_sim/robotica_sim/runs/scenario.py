@@ -1,0 +1,371 @@
+"""
+Scenarios: what a run is made of (robot, path, sensors, tracker, pacing, seed, duration).
+
+Two kinds of run: a mobile robot (``robot.type`` one of
+:data:`robotica_kin.mobile.vehicles.VEHICLE_TYPES`, sections ``path``, ``sensors``, ``odometry``,
+``tracker``) and a manipulator (``robot.type: manipulator``, sections
+``arm``, ``reference``, ``controller``, book ch. 8). A section of the other kind is an error.
+
+A scenario is a YAML file, validated strictly when loaded: an unknown key, a value of the wrong
+type or out of range gives a :class:`ScenarioError` naming the key, never a silently ignored
+setting. Shipped scenarios live in ``share/robotica_sim/scenarios`` and can be named without
+their extension (``robotica run demo``).
+"""
+from dataclasses import dataclass, field, fields, is_dataclass
+import math
+from pathlib import Path
+import typing
+from typing import Any, Optional
+
+from ament_index_python.packages import get_package_share_directory, PackageNotFoundError
+from robotica_kin.mobile.odometry import ODOMETRY_METHODS
+from robotica_kin.mobile.vehicles import VEHICLE_TYPES
+from robotica_sim.sensors.gps import GPS_PRESETS
+from robotica_sim.sensors.gyro import GYRO_PRESETS
+import yaml
+
+
+class ScenarioError(ValueError):
+    """A scenario file that cannot be used; the message names the file and the key."""
+
+
+@dataclass(frozen=True)
+class RobotSpec:
+    """The simulated robot (book §4.7.4): a vehicle configuration, or ``manipulator``."""
+
+    type: str = 'differential'  # noqa: A003 (the scenario key)
+    wheel_radius: float = 0.1                      # c [m]
+    wheel_separation: float = 0.4                  # b [m], track of the odometry wheels' axle
+    wheelbase: float = 0.5                         # l [m], steered vehicles
+    base_radius: float = 0.2                       # [m], omni_three
+    half_length: float = 0.2                       # [m], mecanum
+    max_steering_angle: float = 1.2                # [rad], steered vehicles
+    icr_scale: float = 1.0                         # skid_steer
+    traction_time_constant: float = 0.0            # [s] first-order lag; 0: none
+    steering_time_constant: float = 0.0            # [s]
+    longitudinal_slip: float = 0.0                 # [-] in [0, 1)
+    initial_pose: tuple[float, ...] = (0.0, 0.0, 0.0)   # x [m], y [m], theta [rad] REP-103
+
+
+@dataclass(frozen=True)
+class PathSpec:
+    """The reference path: a shape of ``robotica_ctrl.mobile.path_shapes`` and its arguments."""
+
+    shape: str = 'rounded_rectangle'
+    frame_id: str = 'odom'
+    args: dict = field(default_factory=dict)       # keyword arguments of the shape function
+
+
+@dataclass(frozen=True)
+class EncoderSpec:
+    """Wheel encoders (book §7.3.2): counts per wheel revolution = PPR x decoding x gear."""
+
+    pulses_per_revolution: int = 1024
+    decoding: int = 4                              # x1, x2 or x4 quadrature
+    gear_ratio: float = 1.0                        # encoder revolutions per wheel revolution
+    missed_count_probability: float = 0.0
+
+
+@dataclass(frozen=True)
+class GyroSpec:
+    """The gyroscope (book §7.7.3): a grade of ``robotica_sim.sensors.gyro.GYRO_PRESETS``."""
+
+    enabled: bool = False
+    preset: str = 'mems_consumer'
+
+
+@dataclass(frozen=True)
+class CompassSpec:
+    """The compass / magnetometer (book §7.7.2)."""
+
+    enabled: bool = False
+    noise_stddev: float = 2e-7                     # [T] per axis
+    hard_iron: tuple[float, ...] = (0.0, 0.0, 0.0)     # [T]
+    tilt_error: float = 0.0                        # [rad]
+
+
+@dataclass(frozen=True)
+class GpsSpec:
+    """The GPS receiver (book §7.7.5): a preset of ``robotica_sim.sensors.gps.GPS_PRESETS``."""
+
+    enabled: bool = False
+    preset: str = 'dgps'
+    origin: tuple[float, ...] = (37.41, -6.0, 10.0)    # latitude, longitude [deg], height [m]
+
+
+@dataclass(frozen=True)
+class SensorsSpec:
+    """Sensor emulators of the run (encoders always; the others when enabled)."""
+
+    encoders: EncoderSpec = EncoderSpec()
+    gyro: GyroSpec = GyroSpec()
+    compass: CompassSpec = CompassSpec()
+    gps: GpsSpec = GpsSpec()
+
+
+@dataclass(frozen=True)
+class OdometrySpec:
+    """Dead reckoning and fusion settings (the odometry node)."""
+
+    integration_method: str = 'exact_arc'
+    heading_source: str = 'encoders'               # or 'gyro' (needs sensors.gyro)
+    fuse_gps: bool = False                         # needs sensors.gps
+    fuse_compass: bool = False                     # needs sensors.compass
+    wheel_radius_error: float = 0.0                # [-] nominal c = true c (1 + error)
+    track_error: float = 0.0                       # [-] nominal b = true b (1 + error)
+
+
+@dataclass(frozen=True)
+class TrackerSpec:
+    """The path tracker: its law and the law's gains (parameters ``<law>.<gain>``)."""
+
+    law: str = 'pure_pursuit'
+    gains: dict = field(default_factory=dict)
+
+
+ARM_MODELS = ('puma560', 'two_link_arm')
+MOBILE_SECTIONS = ('path', 'sensors', 'odometry', 'tracker')
+ARM_SECTIONS = ('arm', 'reference', 'controller')
+
+
+@dataclass(frozen=True)
+class PayloadSpec:
+    """A payload grasped during the run (Ej. 8.4)."""
+
+    mass: float = 0.0                              # [kg]; 0: none
+    com: tuple[float, ...] = (0.0, 0.0, 0.0)       # [m] in the last link's frame {n}
+    time: float = 0.0                              # [s] simulated
+
+
+@dataclass(frozen=True)
+class ArmSpec:
+    """The simulated manipulator (the plant, book ch. 5)."""
+
+    model: str = 'puma560'                         # one of ARM_MODELS
+    masses: tuple[float, ...] = ()                 # two_link_arm: (m1, m2) [kg], Ej. 5.1
+    lengths: tuple[float, ...] = ()                # two_link_arm: (l1, l2) [m]
+    gravity: tuple[float, ...] = (0.0, 0.0, -9.81)     # [m/s^2] in the base frame {0}
+    initial_positions: tuple[float, ...] = ()      # q(0) [rad | m]; () = zeros
+    initial_velocities: tuple[float, ...] = ()     # q'(0); () = zeros
+    tau_max: tuple[float, ...] = ()                # [N m], 1 or n values; () = none
+    unmodelled_viscous: tuple[float, ...] = ()     # [N m s], 1 or n values (App. A)
+    respect_limits: bool = True
+    payload: PayloadSpec = PayloadSpec()
+
+
+@dataclass(frozen=True)
+class ReferenceSpec:
+    """The joint reference: a generator of ``joint_trajectory_publisher`` and its parameters."""
+
+    generator: str = 'sine'
+    args: dict = field(default_factory=dict)       # its parameters (sine.*, via.*, ...)
+
+
+@dataclass(frozen=True)
+class ControllerSpec:
+    """The joint controller: its law, the law's gains and the model it believes in."""
+
+    law: str = 'computed_torque'
+    model_masses: tuple[float, ...] = ()           # two_link_arm estimate (m̂1, m̂2); () exact
+    use_friction: bool = True
+    gains: dict = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
+class Scenario:
+    """A whole run."""
+
+    name: str
+    description: str = ''
+    duration: float = 30.0                         # [s] simulated
+    seed: int = 0
+    pacing: str = 'lockstep'                       # 'lockstep' or 'realtime'
+    step_period: float = 0.02                      # [s] simulated
+    robot: RobotSpec = RobotSpec()
+    path: PathSpec = PathSpec()
+    sensors: SensorsSpec = SensorsSpec()
+    odometry: OdometrySpec = OdometrySpec()
+    tracker: TrackerSpec = TrackerSpec()
+    arm: ArmSpec = ArmSpec()
+    reference: ReferenceSpec = ReferenceSpec()
+    controller: ControllerSpec = ControllerSpec()
+    source: Optional[str] = None                   # the file it was loaded from
+
+    @property
+    def is_manipulator(self) -> bool:
+        """Return whether the run simulates a manipulator (else a mobile robot)."""
+        return self.robot.type == 'manipulator'
+
+    def __post_init__(self) -> None:
+        checks = [
+            (self.duration > 0.0 and math.isfinite(self.duration), 'duration must be > 0 s'),
+            (self.pacing in ('lockstep', 'realtime'), 'pacing must be lockstep or realtime'),
+            (0.0 < self.step_period <= 1.0, 'step_period must be in (0, 1] s'),
+            (self.robot.type in VEHICLE_TYPES + ('manipulator',),
+             f'robot.type must be manipulator or one of {VEHICLE_TYPES}'),
+            (self.arm.model in ARM_MODELS, f'arm.model must be one of {ARM_MODELS}'),
+            (self.arm.model != 'two_link_arm' or (
+                len(self.arm.masses) == len(self.arm.lengths) == 2
+                and min(self.arm.masses) >= 0.0 and min(self.arm.lengths) > 0.0),
+             'arm.masses and arm.lengths: two_link_arm needs [m1, m2] >= 0 kg and [l1, l2] > 0 m'),
+            (self.arm.model == 'two_link_arm' or not (self.arm.masses or self.arm.lengths),
+             'arm.masses and arm.lengths are for two_link_arm only'),
+            (len(self.arm.gravity) == 3, 'arm.gravity must be 3 values [m/s^2]'),
+            (self.arm.payload.mass >= 0.0 and len(self.arm.payload.com) == 3
+             and self.arm.payload.time >= 0.0,
+             'arm.payload: mass >= 0 kg, com [x, y, z] m, time >= 0 s'),
+            (len(self.controller.model_masses) in (0, 2) and (
+                not self.controller.model_masses or self.arm.model == 'two_link_arm'),
+             'controller.model_masses: [m1, m2] of a two_link_arm model'),
+            (self.robot.wheel_radius > 0.0, 'robot.wheel_radius must be > 0 m'),
+            (self.robot.wheel_separation > 0.0, 'robot.wheel_separation must be > 0 m'),
+            (min(self.robot.wheelbase, self.robot.base_radius, self.robot.half_length) > 0.0,
+             'robot.wheelbase, base_radius and half_length must be > 0 m'),
+            (0.0 < self.robot.max_steering_angle < math.pi / 2.0,
+             'robot.max_steering_angle must be in (0, pi/2) rad'),
+            (self.robot.icr_scale >= 1.0, 'robot.icr_scale must be >= 1'),
+            (min(self.robot.traction_time_constant, self.robot.steering_time_constant) >= 0.0,
+             'robot.traction_time_constant and steering_time_constant must be >= 0 s'),
+            (0.0 <= self.robot.longitudinal_slip < 1.0,
+             'robot.longitudinal_slip must be in [0, 1)'),
+            (len(self.robot.initial_pose) == 3
+             and all(math.isfinite(v) for v in self.robot.initial_pose),
+             'robot.initial_pose must be 3 finite numbers [x, y, theta]'),
+            (self.sensors.encoders.pulses_per_revolution >= 1
+             and self.sensors.encoders.decoding in (1, 2, 4)
+             and self.sensors.encoders.gear_ratio > 0.0
+             and 0.0 <= self.sensors.encoders.missed_count_probability <= 0.5,
+             'sensors.encoders: pulses_per_revolution >= 1, decoding 1, 2 or 4, gear_ratio > 0, '
+             'missed_count_probability in [0, 0.5]'),
+            (self.sensors.gyro.preset in GYRO_PRESETS,
+             f'sensors.gyro.preset must be one of {tuple(GYRO_PRESETS)}'),
+            (self.sensors.gps.preset in GPS_PRESETS,
+             f'sensors.gps.preset must be one of {tuple(GPS_PRESETS)}'),
+            (len(self.sensors.gps.origin) == 3 and abs(self.sensors.gps.origin[0]) <= 90.0
+             and abs(self.sensors.gps.origin[1]) <= 180.0,
+             'sensors.gps.origin must be [latitude, longitude (deg), height (m)]'),
+            (len(self.sensors.compass.hard_iron) == 3 and self.sensors.compass.noise_stddev >= 0.0,
+             'sensors.compass: hard_iron [x, y, z] T and noise_stddev >= 0 T'),
+            (self.odometry.heading_source in ('encoders', 'gyro'),
+             'odometry.heading_source must be encoders or gyro'),
+            (self.odometry.heading_source != 'gyro' or self.sensors.gyro.enabled,
+             'odometry.heading_source gyro needs sensors.gyro.enabled'),
+            (not self.odometry.fuse_gps or self.sensors.gps.enabled,
+             'odometry.fuse_gps needs sensors.gps.enabled'),
+            (not self.odometry.fuse_compass or self.sensors.compass.enabled,
+             'odometry.fuse_compass needs sensors.compass.enabled'),
+            (min(self.odometry.wheel_radius_error, self.odometry.track_error) > -0.5
+             and max(self.odometry.wheel_radius_error, self.odometry.track_error) < 0.5,
+             'odometry.wheel_radius_error and track_error must be in (-0.5, 0.5)'),
+            (self.odometry.integration_method in ODOMETRY_METHODS,
+             f'odometry.integration_method must be one of {ODOMETRY_METHODS}'),
+        ]
+        for ok, message in checks:
+            if not ok:
+                raise ScenarioError(f'{self.source or self.name}: {message}')
+
+
+def _convert(value: Any, kind: Any, where: str) -> Any:
+    if is_dataclass(kind):
+        if not isinstance(value, dict):
+            raise ScenarioError(f'{where}: expected a mapping, got {value!r}')
+        return _build(kind, value, where)
+    origin = typing.get_origin(kind)
+    if origin is tuple:
+        if not isinstance(value, (list, tuple)):
+            raise ScenarioError(f'{where}: expected a list of numbers, got {value!r}')
+        return tuple(_convert(v, float, f'{where}[{i}]') for i, v in enumerate(value))
+    if kind is dict:
+        if not isinstance(value, dict):
+            raise ScenarioError(f'{where}: expected a mapping, got {value!r}')
+        return dict(value)
+    if kind is float:
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise ScenarioError(f'{where}: expected a number, got {value!r}')
+        if not math.isfinite(value):
+            raise ScenarioError(f'{where}: must be finite, got {value!r}')
+        return float(value)
+    if kind is int:
+        if isinstance(value, bool) or not isinstance(value, int):
+            raise ScenarioError(f'{where}: expected an integer, got {value!r}')
+        return value
+    if kind is bool:
+        if not isinstance(value, bool):
+            raise ScenarioError(f'{where}: expected true or false, got {value!r}')
+        return value
+    if kind in (str, Optional[str]):
+        if not isinstance(value, str):
+            raise ScenarioError(f'{where}: expected a string, got {value!r}')
+        return value
+    raise TypeError(f'{where}: unsupported field type {kind!r}')
+
+
+def _build(cls: Any, data: dict, where: str) -> Any:
+    hints = typing.get_type_hints(cls)
+    known = {f.name for f in fields(cls)}
+    unknown = sorted(map(str, set(data) - known))
+    if unknown:
+        raise ScenarioError(f'{where}: unknown key(s) {", ".join(unknown)}; '
+                            f'known: {", ".join(sorted(known))}')
+    return cls(**{k: _convert(v, hints[k], f'{where}.{k}') for k, v in data.items()})
+
+
+def _normalise(data: dict) -> dict:
+    """Fold the free-form sections (path shape arguments, tracker gains) into their fields."""
+    data = dict(data)
+    if isinstance(data.get('path'), dict):
+        path = dict(data['path'])
+        data['path'] = {k: path.pop(k) for k in ('shape', 'frame_id') if k in path}
+        data['path']['args'] = path
+    for section, fixed, free in (('tracker', ('law',), 'gains'),
+                                 ('reference', ('generator',), 'args'),
+                                 ('controller', ('law', 'model_masses', 'use_friction'),
+                                  'gains')):
+        if isinstance(data.get(section), dict):
+            values = dict(data[section])
+            data[section] = {free: values, **{k: values.pop(k) for k in fixed if k in values}}
+    return data
+
+
+def _check_sections(data: dict, where: str) -> None:
+    """Refuse the sections of the other kind of run (they would be silently ignored)."""
+    robot = data.get('robot')
+    manipulator = isinstance(robot, dict) and robot.get('type') == 'manipulator'
+    foreign = [k for k in (MOBILE_SECTIONS if manipulator else ARM_SECTIONS) if k in data]
+    if foreign:
+        kind = 'manipulator' if manipulator else 'mobile robot'
+        raise ScenarioError(f'{where}: section(s) {", ".join(foreign)} do not apply to a '
+                            f'{kind} run')
+
+
+def resolve_scenario_path(name_or_path: str) -> Path:
+    """Return the file of a scenario given as a path or as a shipped scenario's name."""
+    path = Path(name_or_path)
+    if path.is_file():
+        return path
+    try:
+        shipped = Path(get_package_share_directory('robotica_sim')) / 'scenarios'
+    except PackageNotFoundError:
+        shipped = None
+    if shipped is not None:
+        for candidate in (shipped / name_or_path, shipped / f'{name_or_path}.yaml'):
+            if candidate.is_file():
+                return candidate
+    names = sorted(p.stem for p in shipped.glob('*.yaml')) if shipped else []
+    raise ScenarioError(f'no scenario file {name_or_path!r}; shipped scenarios: '
+                        f'{", ".join(names) or "none found"}')
+
+
+def load_scenario(name_or_path: str) -> Scenario:
+    """Load and validate a scenario (a YAML file or a shipped scenario's name)."""
+    path = resolve_scenario_path(name_or_path)
+    try:
+        data = yaml.safe_load(path.read_text())
+    except yaml.YAMLError as err:
+        raise ScenarioError(f'{path}: not valid YAML: {err}') from None
+    if not isinstance(data, dict):
+        raise ScenarioError(f'{path}: a scenario is a YAML mapping')
+    data.setdefault('name', path.stem)
+    data['source'] = str(path)
+    _check_sections(data, str(path))
+    return _build(Scenario, _normalise(data), str(path))

@@ -1,0 +1,249 @@
+"""
+Tests of robotica_sim.grading.metrics on synthetic runs with closed-form metrics.
+
+Reference values come from the signals' definitions, not from the code: a constant offset of
+0.1 m has RMS 0.1 m; A sin over whole periods has RMS A / sqrt(2); an exponential error
+e^(-t) enters a 2 % band at ln 50 s; the step response of a second-order system with damping
+zeta overshoots by exp(-zeta pi / sqrt(1 - zeta^2)); the integral of |2 sin t| over a period
+is 8; a 2R arm (l1 = 3 m, l2 = 1 m) bent by 90 deg at the elbow moves its tip by sqrt(2) m.
+"""
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+from robotica_sim.grading.metrics import (compute_metrics, energy, MetricParams, METRICS,
+                                          overshoot, settling_time, total_variation)
+from robotica_sim.grading.series import RunSeries, Series, TOPICS
+
+
+def make_run(scenario=None, duration=0.0, path=None, path_times=None, **series):
+    """Return a RunSeries with the given series; counts as a bag of them would have."""
+    roles = {'truth': 'truth', 'odom': 'odom', 'tracking_error': 'tracking_error',
+             'joint_states': 'joint_states', 'controller': 'controller', 'torques': 'torques'}
+    counts = {TOPICS[roles[name]]: len(s) for name, s in series.items() if name in roles}
+    cmd = series.get('cmd')
+    if cmd is not None:
+        counts[TOPICS['cmd_vel' if 'w' in cmd.columns else 'vehicle_command']] = len(cmd)
+    if path is not None:
+        counts[TOPICS['path']] = 1
+    if duration:
+        counts[TOPICS['clock']] = 1
+    fields = {name: series.get(name) for name in (
+        'truth', 'odom', 'cmd', 'tracking_error', 'imu', 'compass', 'gps', 'joint_states',
+        'controller', 'torques')}
+    return RunSeries(bag=Path('synthetic'), scenario=scenario, duration=duration, counts=counts,
+                     path=None if path is None else np.asarray(path, dtype=float),
+                     path_times=path_times, status=None, **fields)
+
+
+def pose_series(t, x, y, theta, **extra):
+    n = len(t)
+    columns = {'x': np.asarray(x, dtype=float), 'y': np.asarray(y, dtype=float),
+               'theta': np.asarray(theta, dtype=float), 'v': np.ones(n), 'vy': np.zeros(n),
+               'w': np.zeros(n)}
+    columns.update({k: np.asarray(v, dtype=float) for k, v in extra.items()})
+    return Series(np.asarray(t, dtype=float), columns)
+
+
+STRAIGHT = [[0.0, 0.0], [10.0, 0.0]]
+
+
+def test_constant_offset_from_a_straight_path():
+    t = np.linspace(0.0, 4.0, 41)
+    truth = pose_series(t, t, np.full(41, 0.1), np.zeros(41))
+    m = compute_metrics(make_run(truth=truth, path=STRAIGHT, duration=4.0)).values
+    assert m['rms_cross_track'] == pytest.approx(0.1, abs=1e-12)
+    assert m['max_cross_track'] == pytest.approx(0.1, abs=1e-12)
+    assert m['rms_heading_error'] == 0.0 and m['max_heading_error'] == 0.0
+    assert m['completion'] == pytest.approx(0.4)       # 4 m of the 10 m path
+    assert m['finished'] is False
+    assert m['path_length'] == pytest.approx(4.0)
+    assert m['time'] == 4.0
+    assert m['collisions'] is None
+
+
+def test_sine_error_has_rms_amplitude_over_sqrt_2():
+    amplitude, period, n = 0.3, 2.0, 400           # 4 whole periods, 100 samples each
+    t = np.arange(n) * (4 * period / n)
+    y = amplitude * np.sin(2 * math.pi * t / period)
+    heading = 0.2 * np.cos(2 * math.pi * t / period)
+    truth = pose_series(t, 0.5 * t, y, heading)
+    m = compute_metrics(make_run(truth=truth, path=STRAIGHT)).values
+    assert m['rms_cross_track'] == pytest.approx(amplitude / math.sqrt(2), rel=1e-12)
+    assert m['max_cross_track'] == pytest.approx(amplitude, rel=1e-12)
+    assert m['rms_heading_error'] == pytest.approx(0.2 / math.sqrt(2), rel=1e-12)
+    assert 'time' not in m                         # no /clock: absent, not zero
+
+
+def test_a_closed_path_is_followed_lap_by_lap():
+    square = [[0, 0], [2, 0], [2, 2], [0, 2], [0, 0]]
+    # One lap on the square, 0.05 m inside (left of travel), back at the start.
+    s = np.linspace(0.0, 8.0, 161)
+    corners = np.array(square, dtype=float)
+    x = np.interp(s, [0, 2, 4, 6, 8], corners[:, 0])
+    y = np.interp(s, [0, 2, 4, 6, 8], corners[:, 1])
+    x_in = np.clip(x, 0.05, 1.95)
+    y_in = np.clip(y, 0.05, 1.95)
+    lap = compute_metrics(make_run(truth=pose_series(s, x_in, y_in, np.zeros(161)),
+                                   path=square)).values
+    # The last pose (0.05, 0.05) projects onto the last segment at s = 8 - 0.05; a search
+    # over the whole path would find the first segment (s = 0.05) instead.
+    assert lap['completion'] == pytest.approx(7.95 / 8) and lap['finished'] is True
+    assert lap['rms_cross_track'] == pytest.approx(0.05)   # 0.05 m inside everywhere
+    half = compute_metrics(make_run(truth=pose_series(s[:81], x[:81], y[:81],
+                                                      np.zeros(81)), path=square)).values
+    assert half['completion'] == pytest.approx(0.5) and half['finished'] is False
+
+
+def test_finished_needs_both_the_arc_length_and_the_distance():
+    t = np.linspace(0.0, 1.0, 11)
+    near = pose_series(t, 9.0 + t * 0.95, np.zeros(11), np.zeros(11))
+    assert compute_metrics(make_run(truth=near, path=STRAIGHT)).values['finished'] is True
+    params = MetricParams(goal_tolerance=0.01)
+    assert compute_metrics(make_run(truth=near, path=STRAIGHT),
+                           params).values['finished'] is False
+
+
+def test_a_timed_path_gives_the_trajectory_error():
+    t = np.linspace(0.0, 2.0, 21)
+    path = np.column_stack([t, np.zeros(21)])
+    truth = pose_series(t, t - 0.3, np.full(21, 0.4), np.zeros(21))  # 0.3 behind, 0.4 aside
+    m = compute_metrics(make_run(truth=truth, path=path, path_times=t)).values
+    assert m['rms_trajectory_error'] == pytest.approx(0.5)
+    assert m['max_trajectory_error'] == pytest.approx(0.5)
+
+
+def test_tracking_error_topic_is_used_without_truth():
+    t = np.linspace(0.0, 1.0, 5)
+    topic = Series(t, {'cross_track': np.array([0.1, -0.1, 0.1, -0.1, 0.1]),
+                       'heading': np.full(5, -0.3), 'along_track': np.zeros(5),
+                       'target_x': t, 'target_y': np.zeros(5)})
+    m = compute_metrics(make_run(tracking_error=topic))
+    assert m.values['rms_cross_track'] == pytest.approx(0.1)
+    assert m.values['max_heading_error'] == pytest.approx(0.3)
+    assert 'path_tracker/tracking_error' in m.notes['rms_cross_track']
+    assert m.absent['completion'] == ('needs topics /ground_truth/odom and /path, which the '
+                                      'bag lacks')
+
+
+def test_control_effort_of_commands():
+    t = np.arange(201) * 0.01                      # two whole periods of 1 s, both ends
+    w = np.sin(2 * math.pi * t)
+    twist = Series(t, {'v': np.ones(201), 'w': w})
+    m = compute_metrics(make_run(cmd=twist)).values
+    # sum of sin^2 over 100 samples of a period is 50: 100 over 201 samples
+    assert m['rms_angular_command'] == pytest.approx(math.sqrt(100 / 201), rel=1e-12)
+    # sampled at its peaks (t = 0.25 + k/2): 0 -> 1 -> -1 -> 1 -> -1 -> 0, total 8
+    assert m['angular_command_variation'] == pytest.approx(8.0, rel=1e-12)
+    steering = Series(t[:3], {'v': np.ones(3), 'steering': np.array([0.0, 0.2, -0.1]),
+                              'steering_rate': np.zeros(3)})
+    m = compute_metrics(make_run(cmd=steering)).values
+    assert m['rms_steering'] == pytest.approx(math.sqrt(0.05 / 3))
+    assert m['steering_variation'] == pytest.approx(0.5)
+    assert 'rms_angular_command' not in m
+
+
+def test_estimation_errors_against_interpolated_truth():
+    t = np.linspace(0.0, 1.0, 11)                   # truth: x = t, heading near pi
+    truth = pose_series(t, t, np.zeros(11), np.full(11, 3.1))
+    t_odom = np.linspace(0.05, 0.95, 10)            # between the truth samples
+    var_x = np.where(np.arange(10) < 5, 0.1 ** 2, 0.05 ** 2)   # 3 sigma: 0.3 m, then 0.15 m
+    odom = pose_series(t_odom, t_odom + 0.2, np.zeros(10), np.full(10, -3.1),
+                       var_x=var_x, var_y=np.full(10, 1.0), var_theta=np.full(10, 1.0))
+    m = compute_metrics(make_run(truth=truth, odom=odom)).values
+    assert m['rms_position_error'] == pytest.approx(0.2)
+    assert m['max_position_error'] == pytest.approx(0.2)
+    assert m['rms_odom_heading_error'] == pytest.approx(2 * math.pi - 6.2)   # wrapped
+    assert m['within_3_sigma'] == pytest.approx(0.5)
+    no_cov = pose_series(t_odom, t_odom, np.zeros(10), np.full(10, 3.1), var_x=np.zeros(10),
+                         var_y=np.zeros(10), var_theta=np.zeros(10))
+    result = compute_metrics(make_run(truth=truth, odom=no_cov))
+    assert result.values['within_3_sigma'] is None
+    assert 'covariance' in result.notes['within_3_sigma']
+    assert result.values['rms_position_error'] == pytest.approx(0.0, abs=1e-12)
+
+
+def controller_series(t, q_d, e):
+    z = np.zeros_like(q_d)
+    return Series(t, {'reference_position': q_d, 'reference_velocity': z,
+                      'position_error': e, 'velocity_error': z, 'effort': z},
+                  ('joint_1', 'joint_2'))
+
+
+def test_arm_errors_settling_and_overshoot():
+    t = np.arange(0, 8001) * 0.001                  # 8 s at 1 kHz
+    zeta, wn = 0.5, 2.0
+    wd = wn * math.sqrt(1 - zeta ** 2)
+    ratio = zeta / math.sqrt(1 - zeta ** 2)
+    step = 1.0 - np.exp(-zeta * wn * t) * (np.cos(wd * t) + ratio * np.sin(wd * t))
+    q_d = np.column_stack([np.ones_like(t), np.ones_like(t)])
+    q = np.column_stack([1.0 - np.exp(-t), step])   # joint 1: e = e^-t; joint 2: 2nd order
+    m = compute_metrics(make_run(controller=controller_series(t, q_d, q_d - q))).values
+    assert m['rms_joint_error'][0] == pytest.approx(math.sqrt((1 - math.exp(-16)) / 16),
+                                                    rel=1e-3)
+    assert m['max_joint_error'][0] == pytest.approx(1.0)
+    assert m['settling_time'][0] == pytest.approx(math.log(50), abs=0.001)
+    assert m['overshoot'][1] == pytest.approx(
+        100 * math.exp(-zeta * math.pi / math.sqrt(1 - zeta ** 2)), rel=1e-4)
+    assert m['overshoot'][0] == pytest.approx(0.0)  # e^-t never passes the set point
+    assert 'rms_cartesian_error' in compute_metrics(make_run(
+        controller=controller_series(t, q_d, q_d - q))).absent
+
+
+def test_a_moving_reference_has_no_overshoot_and_may_not_settle():
+    t = np.linspace(0.0, 4.0, 401)
+    q_d = np.column_stack([0.15 * np.sin(t), 0.15 * np.sin(t)])
+    e = np.column_stack([0.1 * np.sin(3 * t), np.zeros_like(t)])
+    result = compute_metrics(make_run(controller=controller_series(t, q_d, e)))
+    assert result.values['overshoot'] == [None, None]
+    assert result.values['settling_time'] == [None, 0.0]
+    assert 'band' in result.notes['settling_time']
+
+
+def test_cartesian_error_of_the_two_link_arm():
+    scenario = {'arm': {'model': 'two_link_arm', 'masses': [2.0, 1.0], 'lengths': [3.0, 1.0]}}
+    t = np.linspace(0.0, 1.0, 3)
+    q_d = np.zeros((3, 2))                           # tip at (4, 0)
+    e = np.tile([0.0, math.pi / 2], (3, 1))          # q = [0, -pi/2]: tip at (3, -1)
+    m = compute_metrics(make_run(scenario=scenario,
+                                 controller=controller_series(t, q_d, e))).values
+    assert m['rms_cartesian_error'] == pytest.approx(math.sqrt(2))
+    assert m['max_cartesian_error'] == pytest.approx(math.sqrt(2))
+
+
+def test_peak_torque_and_energy():
+    t = np.linspace(0.0, 2 * math.pi, 20001)
+    torques = Series(t, {'effort': np.column_stack([np.full_like(t, 2.0), -np.full_like(t, 3.0)])})
+    joints = Series(t, {'position': np.zeros((len(t), 2)),
+                        'velocity': np.column_stack([np.sin(t), np.zeros_like(t)]),
+                        'effort': np.zeros((len(t), 0))}, ('joint_1', 'joint_2'))
+    m = compute_metrics(make_run(torques=torques, joint_states=joints)).values
+    assert m['peak_torque'] == [2.0, 3.0]
+    assert m['energy'] == pytest.approx(8.0, rel=1e-6)
+    result = compute_metrics(make_run(torques=torques))
+    assert result.absent['energy'] == 'needs topic /joint_states, which the bag lacks'
+
+
+def test_absent_metrics_name_the_missing_topic():
+    t = np.linspace(0.0, 1.0, 3)
+    result = compute_metrics(make_run(truth=pose_series(t, t, 0 * t, 0 * t)))
+    assert result.absent['max_position_error'] == 'needs topic /odom, which the bag lacks'
+    assert result.absent['rms_cross_track'].startswith('needs topic /path, which the bag lacks')
+    assert result.absent['peak_torque'] == 'needs topic /joint_torques, which the bag lacks'
+    assert set(result.values) | set(result.absent) == set(METRICS)
+
+
+def test_helpers_against_hand_values():
+    assert total_variation([0.0, 2.0, 1.0, 1.0]) == 3.0
+    assert settling_time([0.0, 0.5, 1.0], [0.5, 0.01, 0.0], 0.02) == 0.5
+    assert overshoot([2.0, 0.5, 0.8, 1.0], 1.0) == pytest.approx(50.0)   # downward move
+    assert overshoot([1.0, 1.0], 1.0) is None
+    assert energy([0.0, 2.0], [[1.0, 1.0], [1.0, 1.0]], [[1.0, -2.0], [1.0, -2.0]]) == 6.0
+
+
+@pytest.mark.parametrize('field, value', [('goal_tolerance', 0.0), ('search_window', -1.0),
+                                          ('settling_band', 1.0), ('sigma_bound', math.nan)])
+def test_params_are_checked(field, value):
+    with pytest.raises(ValueError, match=field):
+        MetricParams(**{field: value})

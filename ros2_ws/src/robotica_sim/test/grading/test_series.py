@@ -1,0 +1,262 @@
+"""
+Tests of robotica_sim.grading.series on synthetic bags written with rosbags in the test.
+
+The reference values are the numbers written into the bag, so every column is checked against
+what went in: stamps, positions, the yaw of quaternions built from known angles, covariance
+diagonals, joint arrays (also when a message lists its joints in another order).
+"""
+import math
+
+import numpy as np
+import pytest
+from robotica_sim.bags.info import BagError
+from robotica_sim.bags.typestore import ensure_type, jazzy_typestore
+from robotica_sim.grading.metrics import compute_metrics
+from robotica_sim.grading.series import load_run, Series
+from rosbags.rosbag2 import StoragePlugin, Writer
+
+SCENARIO = 'name: synthetic\nseed: 3\narm:\n  model: two_link_arm\n  lengths: [3.0, 1.0]\n'
+N = 5                     # samples per topic
+DT = 0.1                  # [s]
+THETA = [0.1, 0.5, -2.0, 3.0, -3.1]   # [rad] truth headings
+
+
+def _types(store):
+    for msgtype in ('TrackingError', 'JointControllerState', 'SimulatorStatus',
+                    'VehicleCommand'):
+        ensure_type(store, f'robotica_msgs/msg/{msgtype}')
+    return store.types
+
+
+def _header(types, t, frame='odom'):
+    sec = int(math.floor(t))
+    return types['std_msgs/msg/Header'](
+        stamp=types['builtin_interfaces/msg/Time'](sec=sec, nanosec=round((t - sec) * 1e9)),
+        frame_id=frame)
+
+
+def _quaternion(types, yaw):
+    return types['geometry_msgs/msg/Quaternion'](x=0.0, y=0.0, z=math.sin(yaw / 2),
+                                                 w=math.cos(yaw / 2))
+
+
+def _odometry(types, t, x, y, yaw, v, w, variances):
+    cov = np.zeros(36)
+    cov[[0, 7, 35]] = variances
+    vec = types['geometry_msgs/msg/Vector3']
+    pose = types['geometry_msgs/msg/Pose'](
+        position=types['geometry_msgs/msg/Point'](x=x, y=y, z=0.0),
+        orientation=_quaternion(types, yaw))
+    twist = types['geometry_msgs/msg/Twist'](linear=vec(x=v, y=0.0, z=0.0),
+                                             angular=vec(x=0.0, y=0.0, z=w))
+    return types['nav_msgs/msg/Odometry'](
+        header=_header(types, t), child_frame_id='base_link',
+        pose=types['geometry_msgs/msg/PoseWithCovariance'](pose=pose, covariance=cov),
+        twist=types['geometry_msgs/msg/TwistWithCovariance'](twist=twist,
+                                                             covariance=np.zeros(36)))
+
+
+def write_bag(path, topics, scenario=SCENARIO):
+    """Write ``topics``: {topic: (msgtype, [(receive time [s], message), ...])}."""
+    store = jazzy_typestore()
+    _types(store)
+    writer = Writer(path, version=9, storage_plugin=StoragePlugin.MCAP)
+    writer.open()
+    if scenario is not None:
+        writer.set_custom_data('robotica.scenario.yaml', scenario)
+    for topic, (msgtype, messages) in topics.items():
+        connection = writer.add_connection(topic, msgtype, typestore=store)
+        for t, msg in messages:
+            writer.write(connection, round(t * 1e9), store.serialize_cdr(msg, msgtype))
+    writer.close()
+    return path
+
+
+def mobile_topics(types):
+    """Every mobile topic, N samples at DT (odom received out of order), known values."""
+    times = [k * DT for k in range(N)]
+    vec = types['geometry_msgs/msg/Vector3']
+    pose_stamped = types['geometry_msgs/msg/PoseStamped']
+    path = types['nav_msgs/msg/Path'](header=_header(types, 0.0), poses=[
+        pose_stamped(header=_header(types, 0.0), pose=types['geometry_msgs/msg/Pose'](
+            position=types['geometry_msgs/msg/Point'](x=float(x), y=0.0, z=0.0),
+            orientation=_quaternion(types, 0.0))) for x in range(4)])
+    odom = [(t, _odometry(types, t, 10.0 * t, 0.5, THETA[k], 1.0, 0.2, [0.01, 0.02, 0.03]))
+            for k, t in enumerate(times)]
+    odom[0], odom[1] = (odom[1][0], odom[0][1]), (odom[0][0], odom[1][1])   # swap arrivals
+    imu = types['sensor_msgs/msg/Imu'](   # unstamped (0): its receive time is used
+        header=_header(types, 0.0), orientation=_quaternion(types, 0.0),
+        orientation_covariance=np.zeros(9), angular_velocity=vec(x=0.0, y=0.0, z=0.7),
+        angular_velocity_covariance=np.zeros(9), linear_acceleration=vec(x=0.0, y=0.0, z=0.0),
+        linear_acceleration_covariance=np.zeros(9))
+    compass_cov = np.zeros(9)
+    compass_cov[8] = 0.04
+    compass = types['sensor_msgs/msg/Imu'](
+        header=_header(types, 0.2), orientation=_quaternion(types, -1.2),
+        orientation_covariance=compass_cov, angular_velocity=vec(x=0.0, y=0.0, z=0.0),
+        angular_velocity_covariance=np.zeros(9), linear_acceleration=vec(x=0.0, y=0.0, z=0.0),
+        linear_acceleration_covariance=np.zeros(9))
+    gps_cov = np.zeros(9)
+    gps_cov[[0, 4, 8]] = [4.0, 9.0, 16.0]
+    gps = types['sensor_msgs/msg/NavSatFix'](
+        header=_header(types, 0.4), status=types['sensor_msgs/msg/NavSatStatus'](
+            status=0, service=1), latitude=37.4, longitude=-6.0, altitude=12.0,
+        position_covariance=gps_cov, position_covariance_type=2)
+    point = types['geometry_msgs/msg/Point']
+    return {
+        '/clock': ('rosgraph_msgs/msg/Clock', [
+            (t, types['rosgraph_msgs/msg/Clock'](clock=_header(types, t).stamp))
+            for t in times]),
+        '/ground_truth/odom': ('nav_msgs/msg/Odometry', [
+            (t, _odometry(types, t, float(k), 0.5, THETA[k], 1.0, 0.2, [0.0, 0.0, 0.0]))
+            for k, t in enumerate(times)]),
+        '/odom': ('nav_msgs/msg/Odometry', odom),
+        '/path': ('nav_msgs/msg/Path', [(0.0, path)]),
+        '/cmd_vel': ('geometry_msgs/msg/Twist', [
+            (t, types['geometry_msgs/msg/Twist'](linear=vec(x=1.0, y=0.0, z=0.0),
+                                                 angular=vec(x=0.0, y=0.0, z=-t)))
+            for t in times]),
+        '/path_tracker/tracking_error': ('robotica_msgs/msg/TrackingError', [
+            (t, types['robotica_msgs/msg/TrackingError'](
+                header=_header(types, t), cross_track=0.5, heading=-t, along_track=0.0,
+                target_point=point(x=t + 1.0, y=0.0, z=0.0))) for t in times]),
+        '/imu/data': ('sensor_msgs/msg/Imu', [(0.3, imu)]),
+        '/compass/heading': ('sensor_msgs/msg/Imu', [(0.2, compass)]),
+        '/gps/fix': ('sensor_msgs/msg/NavSatFix', [(0.4, gps)]),
+        '/simulator/status': ('robotica_msgs/msg/SimulatorStatus', [
+            (t, types['robotica_msgs/msg/SimulatorStatus'](
+                header=_header(types, t), step=k, real_time_factor=2.5, lockstep_timeouts=1,
+                stale_command_stops=0, finished=k == N - 1)) for k, t in enumerate(times)]),
+    }
+
+
+def test_mobile_run_columns_match_what_was_written(tmp_path):
+    types = _types(jazzy_typestore())
+    run = load_run(write_bag(tmp_path / 'bag', mobile_topics(types)))
+    assert run.scenario_name == 'synthetic' and run.scenario['seed'] == 3
+    assert run.duration == pytest.approx(0.4)
+    assert run.counts['/odom'] == N and run.counts['/path'] == 1
+    assert run.msgtypes['/compass/heading'] == 'sensor_msgs/msg/Imu'
+    assert not run.is_manipulator
+    truth = run.truth
+    assert truth.t == pytest.approx([0.0, 0.1, 0.2, 0.3, 0.4])
+    assert truth['x'] == pytest.approx([0.0, 1.0, 2.0, 3.0, 4.0])
+    assert truth['theta'] == pytest.approx(THETA)   # yaw of the quaternions, in (-pi, pi]
+    assert (truth['v'] == pytest.approx(np.ones(N))) and truth['w'] == pytest.approx(
+        np.full(N, 0.2))
+    # /odom arrived with its first two messages swapped: the series is in stamp order, and
+    # the message stamped 0 keeps t = 0 although it was received at 0.1 s.
+    assert run.odom.t == pytest.approx(truth.t)
+    assert run.odom['x'] == pytest.approx(10.0 * truth.t)
+    assert (run.odom['var_x'], run.odom['var_y'], run.odom['var_theta']) == (
+        pytest.approx(np.full(N, 0.01)), pytest.approx(np.full(N, 0.02)),
+        pytest.approx(np.full(N, 0.03)))
+    assert run.path.tolist() == [[0.0, 0.0], [1.0, 0.0], [2.0, 0.0], [3.0, 0.0]]
+    assert run.path_times is None            # every pose stamped 0: not a trajectory
+    assert run.cmd['w'] == pytest.approx(-truth.t) and run.cmd.t == pytest.approx(truth.t)
+    assert set(run.cmd.columns) == {'v', 'w'}
+    assert run.tracking_error['target_x'] == pytest.approx(truth.t + 1.0)
+    assert run.imu['wz'].tolist() == [0.7] and run.imu.t == pytest.approx([0.3])
+    assert run.compass['theta'] == pytest.approx([-1.2])
+    assert run.compass['var_theta'] == pytest.approx([0.04])
+    gps = run.gps
+    assert (gps['var_e'][0], gps['var_n'][0], gps['altitude'][0]) == (4.0, 9.0, 12.0)
+    assert run.status == {'step': N - 1, 'real_time_factor': 2.5, 'lockstep_timeouts': 1,
+                          'stale_command_stops': 0, 'finished': True}
+    assert run.joint_states is None and run.controller is None and run.torques is None
+    for series in (truth, run.odom, run.cmd, run.tracking_error, run.imu, run.gps):
+        assert all(v.dtype == np.float64 for v in (series.t, *series.columns.values()))
+
+
+def test_topic_selection_and_errors(tmp_path):
+    types = _types(jazzy_typestore())
+    bag = write_bag(tmp_path / 'bag', mobile_topics(types))
+    run = load_run(bag, ['/path'])
+    assert run.path is not None and run.duration == pytest.approx(0.4)   # /clock always
+    assert run.truth is None and run.odom is None and run.status is None
+    assert run.counts['/ground_truth/odom'] == N                          # counts: all topics
+    with pytest.raises(ValueError, match='unknown topics'):
+        load_run(bag, ['/nope'])
+    with pytest.raises(BagError, match='not a bag directory'):
+        load_run(tmp_path / 'missing')
+    data = next(bag.glob('*.mcap'))
+    data.write_bytes(data.read_bytes()[:300])
+    with pytest.raises(BagError, match='cannot read the bag'):
+        load_run(bag)
+
+
+def test_bag_without_known_topics_gives_empty_series(bag):
+    # conftest's bag: only std_msgs/Float64 on /a and /b, a scenario without arm.
+    run = load_run(bag)
+    assert run.counts == {'/a': 11, '/b': 3}
+    assert run.truth is None and run.path is None and run.duration == 0.0
+    assert run.scenario_name == 'ej9_3a'
+
+
+def _controller(types, t, names, q_d, e):
+    z = np.zeros(len(names))
+    return types['robotica_msgs/msg/JointControllerState'](
+        header=_header(types, t, ''), law='pid', joint_names=names,
+        reference_position=np.array(q_d), reference_velocity=z, reference_acceleration=z,
+        position_error=np.array(e), velocity_error=z, effort=np.array(q_d) * 10.0)
+
+
+def test_arm_run_keeps_the_first_joint_order(tmp_path):
+    types = _types(jazzy_typestore())
+    names = ['joint_1', 'joint_2']
+    joint_state = types['sensor_msgs/msg/JointState']
+    layout = types['std_msgs/msg/MultiArrayLayout'](dim=[], data_offset=0)
+    topics = {
+        '/joint_states': ('sensor_msgs/msg/JointState', [
+            (0.0, joint_state(header=_header(types, 0.0, ''), name=names,
+                              position=np.array([1.0, 2.0]), velocity=np.array([0.1, 0.2]),
+                              effort=np.array([]))),
+            (0.001, joint_state(header=_header(types, 0.001, ''), name=names[::-1],
+                                position=np.array([20.0, 10.0]),
+                                velocity=np.array([0.4, 0.3]), effort=np.array([])))]),
+        '/joint_controller/controller_state': ('robotica_msgs/msg/JointControllerState', [
+            (0.0, _controller(types, 0.0, names, [1.0, 2.0], [0.5, -0.5])),
+            (0.001, _controller(types, 0.001, names, [3.0, 4.0], [0.25, -0.25]))]),
+        '/joint_torques': ('std_msgs/msg/Float64MultiArray', [
+            (0.0, types['std_msgs/msg/Float64MultiArray'](layout=layout,
+                                                          data=np.array([5.0, 6.0]))),
+            (0.001, types['std_msgs/msg/Float64MultiArray'](layout=layout,
+                                                            data=np.array([7.0, 8.0])))]),
+    }
+    run = load_run(write_bag(tmp_path / 'bag', topics))
+    assert run.is_manipulator and run.duration == 0.0
+    js = run.joint_states
+    assert js.names == ('joint_1', 'joint_2')
+    assert js['position'].tolist() == [[1.0, 2.0], [10.0, 20.0]]   # second message reordered
+    assert js['velocity'].tolist() == [[0.1, 0.2], [0.3, 0.4]]
+    assert js['effort'].shape == (2, 0)
+    assert run.controller['position_error'].tolist() == [[0.5, -0.5], [0.25, -0.25]]
+    assert run.controller['effort'].tolist() == [[10.0, 20.0], [30.0, 40.0]]
+    assert run.controller.names == ('joint_1', 'joint_2')
+    assert run.torques['effort'].tolist() == [[5.0, 6.0], [7.0, 8.0]]
+    assert run.torques.t == pytest.approx([0.0, 0.001])             # receive times
+    assert run.scenario['arm'] == {'model': 'two_link_arm', 'lengths': [3.0, 1.0]}
+
+
+def test_series_lookup_names_the_columns():
+    series = Series(np.array([0.0]), {'x': np.array([1.0]), 'y': np.array([2.0])})
+    assert len(series) == 1 and series['y'].tolist() == [2.0]
+    with pytest.raises(KeyError, match='available: x, y'):
+        series['theta']
+
+
+def test_a_known_topic_of_another_type_is_ignored_with_the_reason(tmp_path):
+    types = _types(jazzy_typestore())
+    stamped = types['geometry_msgs/msg/TwistStamped']
+    vec = types['geometry_msgs/msg/Vector3']
+    twist = types['geometry_msgs/msg/Twist'](linear=vec(x=1.0, y=0.0, z=0.0),
+                                             angular=vec(x=0.0, y=0.0, z=0.5))
+    topics = {'/cmd_vel': ('geometry_msgs/msg/TwistStamped',
+                           [(0.0, stamped(header=_header(types, 0.0), twist=twist))])}
+    run = load_run(write_bag(tmp_path / 'bag', topics))
+    assert run.cmd is None and run.counts == {'/cmd_vel': 1}
+    assert run.ignored == {'/cmd_vel': 'it has type geometry_msgs/msg/TwistStamped, not '
+                                       'geometry_msgs/msg/Twist'}
+    reason = compute_metrics(run).absent['rms_angular_command']
+    assert reason == ('cannot use /cmd_vel: it has type geometry_msgs/msg/TwistStamped, not '
+                      'geometry_msgs/msg/Twist')
