@@ -1,11 +1,14 @@
-"""A fast finiteness test for the short vectors checked on every control or simulation step."""
+"""
+Finiteness checks: a fast test for the short vectors of every step, and a checked real.
+"""
 
 import math
+import numbers
 
 import numpy as np
 from numpy.typing import NDArray
 
-__all__ = ['all_finite']
+__all__ = ['all_finite', 'finite_real']
 
 
 def all_finite(array: NDArray[np.float64]) -> bool:
@@ -22,3 +25,23 @@ def all_finite(array: NDArray[np.float64]) -> bool:
     (True, False)
     """
     return math.isfinite(array.dot(array)) or bool(np.isfinite(array).all())
+
+
+def finite_real(name: str, value: object) -> float:
+    """
+    Return ``value`` as a float if it is a finite real number (not a bool), else ValueError.
+
+    ``name`` names the value in the error message.
+
+    >>> finite_real('t', 2)
+    2.0
+    >>> finite_real('t', True)
+    Traceback (most recent call last):
+    ...
+    ValueError: t must be a real number, got True
+    """
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise ValueError(f'{name} must be a real number, got {value!r}')
+    if not math.isfinite(value):
+        raise ValueError(f'{name} must be finite, got {value!r}')
+    return float(value)

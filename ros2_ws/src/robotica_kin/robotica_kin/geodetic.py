@@ -28,10 +28,10 @@ broadcasts over arrays of points; scalar input gives Python floats (geodetic) or
 
 from dataclasses import dataclass
 import math
-import numbers
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
+from robotica_kin.finite import finite_real
 
 __all__ = [
     'WGS84_A', 'WGS84_B', 'WGS84_E2', 'WGS84_F', 'GeodeticOrigin', 'ecef_to_geodetic',
@@ -205,14 +205,6 @@ def ecef_to_geodetic(x: ArrayLike, y: ArrayLike, z: ArrayLike,
     return _output(phi), _output(lam), _output(h)
 
 
-def _check_real(name: str, value: object) -> float:
-    if isinstance(value, bool) or not isinstance(value, numbers.Real):
-        raise ValueError(f'{name} must be a real number, got {value!r}')
-    if not math.isfinite(value):
-        raise ValueError(f'{name} must be finite, got {value!r}')
-    return float(value)
-
-
 @dataclass(frozen=True)
 class GeodeticOrigin:
     """
@@ -243,9 +235,9 @@ class GeodeticOrigin:
     altitude: float = 0.0  # h0 [m] above the WGS-84 ellipsoid (NavSatFix altitude)
 
     def __post_init__(self) -> None:
-        latitude = _check_real('latitude_deg', self.latitude_deg)
-        longitude = _check_real('longitude_deg', self.longitude_deg)
-        _check_real('altitude', self.altitude)
+        latitude = finite_real('latitude_deg', self.latitude_deg)
+        longitude = finite_real('longitude_deg', self.longitude_deg)
+        finite_real('altitude', self.altitude)
         if not -90.0 <= latitude <= 90.0:
             raise ValueError(f'latitude_deg must be in [-90, 90], got {self.latitude_deg!r}')
         if not -180.0 <= longitude <= 180.0:

@@ -27,11 +27,11 @@ one-cycle error of amplitude about ε tan I.
 
 from dataclasses import dataclass
 import math
-import numbers
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from robotica_kin.angles import wrap_to_pi
+from robotica_kin.finite import finite_real
 
 __all__ = ['CompassModel', 'CompassParams', 'earth_field', 'heading_error_curve',
            'heading_noise_stddev']
@@ -84,9 +84,7 @@ class CompassParams:
     def __post_init__(self) -> None:
         for name in ('declination', 'inclination', 'field_strength', 'tilt_error', 'tilt_axis',
                      'noise_stddev'):
-            value = getattr(self, name)
-            if not isinstance(value, numbers.Real) or not math.isfinite(value):
-                raise ValueError(f'{name} must be a finite number, got {value!r}')
+            finite_real(name, getattr(self, name))
         if abs(self.declination) > math.pi:
             raise ValueError(f'declination must be in [-pi, pi] rad, got {self.declination!r}')
         if abs(self.inclination) > 0.5 * math.pi:

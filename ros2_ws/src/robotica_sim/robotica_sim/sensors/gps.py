@@ -54,6 +54,7 @@ from types import MappingProxyType
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
+from robotica_kin.finite import finite_real
 from robotica_kin.types import Vector
 
 __all__ = [
@@ -96,14 +97,6 @@ def stddev_from_cep(cep: float) -> float:
     return cep / _CEP_PER_SIGMA
 
 
-def _finite_real(name: str, value: object) -> float:
-    if isinstance(value, bool) or not isinstance(value, numbers.Real):
-        raise ValueError(f'{name} must be a real number, got {value!r}')
-    if not math.isfinite(value):
-        raise ValueError(f'{name} must be finite, got {value!r}')
-    return float(value)
-
-
 @dataclass(frozen=True)
 class GpsParams:
     """
@@ -141,7 +134,7 @@ class GpsParams:
     status: str = 'fix'  # solution type, one of GPS_STATUSES
 
     def __post_init__(self) -> None:
-        values = {f.name: _finite_real(f.name, getattr(self, f.name))
+        values = {f.name: finite_real(f.name, getattr(self, f.name))
                   for f in fields(self) if f.name != 'status'}
         for name in ('horizontal_stddev', 'vertical_stddev', 'correlation_time', 'update_rate',
                      'dropout_mean_duration'):
@@ -374,7 +367,7 @@ class GpsModel:
             not a finite vector of shape (3,); the state is then left unchanged.
 
         """
-        t = _finite_real('t', t)
+        t = finite_real('t', t)
         position = np.asarray(true_enu, dtype=np.float64)
         if position.shape != (3,) or not np.isfinite(position).all():
             raise ValueError(f'true_enu must be a finite vector of shape (3,), got {true_enu!r}')
