@@ -21,10 +21,10 @@ import sys
 import time
 from typing import Any
 
-from ament_index_python.packages import get_package_share_directory, PackageNotFoundError
 from robotica_sim.bags.info import BagError
 from robotica_sim.grading.metrics import compute_metrics, METRICS
-from robotica_sim.grading.rubric import Bound, check_metrics, load_rubric, Rubric, RubricError
+from robotica_sim.grading.rubric import (Bound, check_metrics, load_rubric, resolve_rubric,
+                                         Rubric, RubricError)
 from robotica_sim.grading.series import load_run, TOPICS
 
 HELP = 'compute the metrics of recorded runs and check them against a rubric'
@@ -58,24 +58,6 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument('--jobs', type=_jobs, default=os.cpu_count() or 1,
                         help=f'bags graded in parallel (default: CPUs, {os.cpu_count()})')
     parser.add_argument('--quiet', action='store_true', help='no progress lines on stderr')
-
-
-def resolve_rubric(name_or_path: str) -> Path:
-    """Return the file of a rubric given as a path or as a shipped rubric's name."""
-    path = Path(name_or_path)
-    if path.is_file():
-        return path
-    try:
-        shipped: Path | None = Path(get_package_share_directory('robotica_sim')) / 'rubrics'
-    except PackageNotFoundError:
-        shipped = None
-    if shipped is not None:
-        for candidate in (shipped / name_or_path, shipped / f'{name_or_path}.yaml'):
-            if candidate.is_file():
-                return candidate
-    names = sorted(p.stem for p in shipped.glob('*.yaml')) if shipped else []
-    raise RubricError(f'no rubric file {name_or_path!r}; shipped rubrics: '
-                      f'{", ".join(names) or "none found"}')
 
 
 def find_bags(root: Path) -> list[Path]:

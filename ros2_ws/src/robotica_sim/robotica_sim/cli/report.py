@@ -3,7 +3,8 @@ Draw a recorded run: PNG figures and an HTML page that ties them together.
 
 Reads a rosbag2 directory as ``robotica run`` writes it and draws what its topics allow. A
 mobile robot: the path, the true trajectory and the /odom estimate in the x-y plane with the
-robot drawn at intervals; the tracking errors; the commands; the estimation error of /odom with
+robot drawn at intervals; the tracking errors (the truth's against /path, the numbers of
+``robotica grade``, beside the tracker's own); the commands; the estimation error of /odom with
 its ±3σ band; the gyro, compass and GPS readings against the truth with their error histograms.
 A manipulator: joint positions and velocities against the references, torques and position
 errors, one panel per joint. ``index.html`` shows the scenario, the bag's topics and every

@@ -2,7 +2,7 @@
 Grading a run from its bag.
 
 The one loader (series), the metrics, the rubric, the summary line of ``robotica run``, and
-the report (HTML) with its figures.
+the report: its HTML page (report) and its figures (figures).
 """
 
-__all__ = ['metrics', 'report', 'rubric', 'series', 'summary']
+__all__ = ['figures', 'metrics', 'report', 'rubric', 'series', 'summary']

@@ -17,6 +17,9 @@ with its unit, topics and definition; docs/grading.md explains them):
 A metric whose topic the bag lacks is *absent* (in :attr:`RunMetrics.absent`, with the
 reason), never zero; a metric that exists but cannot be defined for this run (no map for
 collisions, no step reference for overshoot) is None with a note.
+
+For the sensor figures of ``robotica report``: :func:`reading_error` (a reading minus the truth
+at its stamp) and :func:`normal_fit` (mean, standard deviation of an error).
 """
 from dataclasses import dataclass, field
 import math
@@ -29,8 +32,8 @@ from robotica_kin.angles import wrap_to_pi
 from robotica_sim.grading.series import RunSeries, Series, TOPICS
 
 __all__ = ['METRICS', 'MetricInfo', 'MetricParams', 'MetricValue', 'RunMetrics',
-           'compute_metrics', 'energy', 'overshoot', 'path_errors', 'pose_errors', 'rms',
-           'settling_time', 'total_variation', 'travelled_length']
+           'compute_metrics', 'energy', 'normal_fit', 'overshoot', 'path_errors', 'pose_errors',
+           'reading_error', 'rms', 'settling_time', 'total_variation', 'travelled_length']
 
 MetricValue = float | bool | list[float | None] | None
 """A metric's value: a number, a flag, one number per joint (None: n/a for that joint)."""
@@ -522,3 +525,65 @@ def compute_metrics(run: RunSeries, params: MetricParams | None = None) -> RunMe
             reason += f' (or {TOPICS["tracking_error"]})'
         out.absent[name] = reason
     return out
+
+
+def reading_error(t_reading: ArrayLike, reading: ArrayLike, t_truth: ArrayLike,
+                  truth: ArrayLike, angle: bool = False) -> NDArray[np.float64]:
+    """
+    Return a sensor's error: each reading minus the truth interpolated at its stamp.
+
+    The truth is interpolated linearly between its samples; readings stamped outside the
+    truth's time span get NaN.
+
+    Parameters
+    ----------
+    t_reading, reading : array_like, shape (n,)
+        Stamps [s] and values of the readings.
+    t_truth, truth : array_like, shape (m,)
+        Stamps [s], increasing, and values of the ground truth, in the readings' unit.
+    angle : bool
+        Values are angles [rad]: the truth is unwrapped before it is interpolated and the
+        error is wrapped to (-π, π].
+
+    Returns
+    -------
+    ndarray, shape (n,)
+
+    Examples
+    --------
+    >>> reading_error([0.5, 2.0], [1.5, 0.0], [0.0, 1.0], [1.0, 2.0])
+    array([ 0., nan])
+
+    Across ±π: the truth goes from 3.1 to 3.1 + 0.1832 rad, the reading -3.1 rad is
+    2π - 3.1 - 3.1916 = -0.0084 rad from it.
+
+    >>> reading_error([0.5], [-3.1], [0.0, 1.0], [3.1, -3.0], angle=True).round(4)
+    array([-0.0084])
+
+    """
+    stamps = np.asarray(t_reading, dtype=np.float64)
+    values = np.asarray(reading, dtype=np.float64)
+    truth_t = np.asarray(t_truth, dtype=np.float64)
+    truth_v = np.asarray(truth, dtype=np.float64)
+    if truth_t.size == 0:
+        return np.full(stamps.shape, np.nan)
+    if angle:
+        truth_v = np.unwrap(truth_v)
+    error = values - np.interp(stamps, truth_t, truth_v, left=np.nan, right=np.nan)
+    return np.asarray(wrap_to_pi(error), dtype=np.float64) if angle else error
+
+
+def normal_fit(samples: ArrayLike) -> tuple[float, float, int]:
+    """
+    Return the mean, the standard deviation (n - 1 divisor) and the count of finite samples.
+
+    NaN for the statistics that need more samples (mean: one, deviation: two).
+
+    >>> normal_fit([1.0, 3.0, float('nan')])
+    (2.0, 1.4142135623730951, 2)
+    """
+    values = np.asarray(samples, dtype=np.float64).ravel()
+    values = values[np.isfinite(values)]
+    mean = float(np.mean(values)) if values.size else math.nan
+    std = float(np.std(values, ddof=1)) if values.size > 1 else math.nan
+    return mean, std, int(values.size)

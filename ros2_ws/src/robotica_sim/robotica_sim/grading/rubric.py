@@ -11,11 +11,12 @@ A rubric is a YAML mapping (docs/grading.md)::
       rms_cross_track: {max: 0.2}     # [m]
       completion: {min: 0.6}
 
-:func:`parse_rubric` validates it strictly (unknown keys and metric names, non-numeric
-bounds, ``min > max``) and raises :class:`RubricError`; :func:`check_metrics` checks a run's
-:class:`~robotica_sim.grading.metrics.RunMetrics` against it. A bound on a per-joint metric
-applies to every joint; a check on a metric the run lacks or cannot define fails with the
-reason.
+:func:`resolve_rubric` finds a rubric by path or by the name of a shipped one
+(``share/robotica_sim/rubrics``); :func:`parse_rubric` validates it strictly (unknown keys and
+metric names, non-numeric bounds, ``min > max``) and raises :class:`RubricError`;
+:func:`check_metrics` checks a run's :class:`~robotica_sim.grading.metrics.RunMetrics` against
+it. A bound on a per-joint metric applies to every joint; a check on a metric the run lacks or
+cannot define fails with the reason.
 """
 from dataclasses import dataclass, field, fields
 import math
@@ -23,10 +24,11 @@ from pathlib import Path
 from typing import Any
 
 from robotica_sim.grading.metrics import MetricParams, METRICS, MetricValue, RunMetrics
+from robotica_sim.runs.shipped import resolve_shipped
 import yaml
 
 __all__ = ['Bound', 'CheckResult', 'Rubric', 'RubricError', 'check_metrics', 'load_rubric',
-           'parse_rubric']
+           'parse_rubric', 'resolve_rubric']
 
 _TOP_KEYS = ('rubric', 'scenario', 'parameters', 'checks')
 
@@ -164,6 +166,14 @@ def parse_rubric(data: Any, source: str = '<rubric>') -> Rubric:
               else MetricParams())
     return Rubric(title=data.get('rubric', Path(source).stem), checks=bounds,
                   scenario=data.get('scenario'), params=params, source=source)
+
+
+def resolve_rubric(name_or_path: str) -> Path:
+    """Return the file of a rubric given as a path or as a shipped rubric's name."""
+    try:
+        return resolve_shipped(name_or_path, 'rubric')
+    except FileNotFoundError as err:
+        raise RubricError(str(err)) from None
 
 
 def load_rubric(path: str | Path) -> Rubric:

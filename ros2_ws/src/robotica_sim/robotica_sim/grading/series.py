@@ -13,6 +13,10 @@ zero, i.e. unstamped, falls back to its receive times); messages without a heade
 Each series is in time order (stable sort by time when received out of order). Poses and
 headings are REP-103 (x forward, y left, θ from the x axis, counter-clockwise); θ is the yaw
 (z rotation) of the message's quaternion.
+
+GPS fixes stay geodetic in their series; :func:`fixes_to_enu` turns them into the world's local
+ENU frame at :func:`gps_origin`, the scenario's ``sensors.gps.origin`` (the GPS emulator's
+origin, REP-103/105: x east, y north).
 """
 from dataclasses import dataclass, field
 import math
@@ -21,11 +25,13 @@ from pathlib import Path
 from typing import Any, Callable, Iterable
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
+from robotica_kin.geodetic import GeodeticOrigin
 from robotica_sim.bags.info import BagError, open_bag
 import yaml
 
-__all__ = ['MSGTYPES', 'RunSeries', 'Series', 'TOPICS', 'load_run']
+__all__ = ['MSGTYPES', 'RunSeries', 'Series', 'TOPICS', 'fixes_to_enu', 'gps_origin',
+           'load_run']
 
 _YAML_LOADER = getattr(yaml, 'CSafeLoader', yaml.SafeLoader)   # LibYAML when available
 
@@ -393,3 +399,66 @@ def load_run(bag: str | Path, topics: Iterable[str] | None = None) -> RunSeries:
         tracking_error=series['tracking_error'], imu=series['imu'], compass=series['compass'],
         gps=series['gps'], joint_states=joints['joint_states'], controller=joints['controller'],
         torques=joints['torques'], status=status, msgtypes=msgtypes, ignored=ignored)
+
+
+def gps_origin(scenario: dict | None) -> GeodeticOrigin:
+    """
+    Return the geodetic origin of the world's ENU frame: the scenario's ``sensors.gps.origin``.
+
+    The origin the GPS emulator was given (latitude, longitude [deg], height [m]); the
+    scenario default (:class:`robotica_sim.runs.scenario.GpsSpec`) when the scenario has none.
+
+    Raises
+    ------
+    ValueError
+        If the scenario's origin is not three numbers in range.
+
+    Examples
+    --------
+    >>> gps_origin({'sensors': {'gps': {'origin': [40.0, -3.7, 650.0]}}}).latitude_deg
+    40.0
+
+    """
+    origin: Any = None
+    sensors = (scenario or {}).get('sensors')
+    if isinstance(sensors, dict) and isinstance(sensors.get('gps'), dict):
+        origin = sensors['gps'].get('origin')
+    if origin is None:
+        # Imported here: robotica_sim.runs.scenario loads SciPy (through the gyro model), seconds
+        # that a report without GPS, or with the origin in its scenario, need not spend.
+        from robotica_sim.runs.scenario import GpsSpec
+        origin = GpsSpec().origin
+    if not isinstance(origin, (list, tuple)) or len(origin) != 3:
+        raise ValueError(f'sensors.gps.origin must be [latitude, longitude, height], '
+                         f'got {origin!r}')
+    return GeodeticOrigin(*(float(v) for v in origin))
+
+
+def fixes_to_enu(origin: GeodeticOrigin, latitude: ArrayLike, longitude: ArrayLike,
+                 altitude: ArrayLike) -> NDArray[np.float64]:
+    """
+    Return GPS fixes (latitude, longitude [deg], height [m]) as ENU positions [m] at ``origin``.
+
+    Fixes without a valid position (NaN, as a receiver without a fix may send, or a latitude
+    outside [-90, 90] deg) give NaN rows instead of an error.
+
+    Returns
+    -------
+    ndarray, shape (n, 3)
+        (east, north, up) [m], REP-103 x east, y north.
+
+    Examples
+    --------
+    >>> origin = GeodeticOrigin(37.41, -6.0, 10.0)
+    >>> fixes_to_enu(origin, [37.41, float('nan')], [-6.0, 0.0], [12.0, 0.0]).round(6)
+    array([[0., 0., 2.],
+           [nan, nan, nan]])
+
+    """
+    fixes = np.column_stack([np.asarray(v, dtype=np.float64).ravel()
+                             for v in (latitude, longitude, altitude)])
+    valid = np.all(np.isfinite(fixes), axis=1) & (np.abs(fixes[:, 0]) <= 90.0)
+    enu = np.full(fixes.shape, np.nan)
+    if valid.any():
+        enu[valid] = np.reshape(origin.geodetic_to_enu(*fixes[valid].T), (-1, 3))
+    return enu

@@ -9,7 +9,7 @@ Two kinds of run: a mobile robot (``robot.type`` one of
 A scenario is a YAML file, validated strictly when loaded: an unknown key, a value of the wrong
 type or out of range gives a :class:`ScenarioError` naming the key, never a silently ignored
 setting. Shipped scenarios live in ``share/robotica_sim/scenarios`` and can be named without
-their extension (``robotica run demo``).
+their extension (``robotica run demo``; :func:`robotica_sim.runs.shipped.resolve_shipped`).
 """
 from dataclasses import dataclass, field, fields, is_dataclass
 import math
@@ -17,9 +17,9 @@ from pathlib import Path
 import typing
 from typing import Any, Optional
 
-from ament_index_python.packages import get_package_share_directory, PackageNotFoundError
 from robotica_kin.mobile.odometry import ODOMETRY_METHODS
 from robotica_kin.mobile.vehicles import VEHICLE_TYPES
+from robotica_sim.runs.shipped import resolve_shipped
 from robotica_sim.sensors.gps import GPS_PRESETS
 from robotica_sim.sensors.gyro import GYRO_PRESETS
 import yaml
@@ -340,20 +340,10 @@ def _check_sections(data: dict, where: str) -> None:
 
 def resolve_scenario_path(name_or_path: str) -> Path:
     """Return the file of a scenario given as a path or as a shipped scenario's name."""
-    path = Path(name_or_path)
-    if path.is_file():
-        return path
     try:
-        shipped = Path(get_package_share_directory('robotica_sim')) / 'scenarios'
-    except PackageNotFoundError:
-        shipped = None
-    if shipped is not None:
-        for candidate in (shipped / name_or_path, shipped / f'{name_or_path}.yaml'):
-            if candidate.is_file():
-                return candidate
-    names = sorted(p.stem for p in shipped.glob('*.yaml')) if shipped else []
-    raise ScenarioError(f'no scenario file {name_or_path!r}; shipped scenarios: '
-                        f'{", ".join(names) or "none found"}')
+        return resolve_shipped(name_or_path, 'scenario')
+    except FileNotFoundError as err:
+        raise ScenarioError(str(err)) from None
 
 
 def load_scenario(name_or_path: str) -> Scenario:

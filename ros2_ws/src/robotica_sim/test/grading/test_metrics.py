@@ -13,7 +13,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 from robotica_sim.grading.metrics import (compute_metrics, energy, MetricParams, METRICS,
-                                          overshoot, settling_time, total_variation)
+                                          normal_fit, overshoot, reading_error, settling_time,
+                                          total_variation)
 from robotica_sim.grading.series import RunSeries, Series, TOPICS
 
 
@@ -247,3 +248,30 @@ def test_helpers_against_hand_values():
 def test_params_are_checked(field, value):
     with pytest.raises(ValueError, match=field):
         MetricParams(**{field: value})
+
+
+# --- sensor errors (the report's sensor figures) ------------------------------------------
+
+def test_reading_error_of_a_line_and_outside_the_truth():
+    t_truth = np.array([0.0, 1.0, 2.0])
+    truth = 3.0 * t_truth - 1.0                     # a line: interpolation is exact
+    error = reading_error([0.25, 1.5, 2.5, -0.1], [0.0, 4.0, 0.0, 0.0], t_truth, truth)
+    np.testing.assert_allclose(error[:2], [0.0 - (-0.25), 4.0 - 3.5])
+    assert np.isnan(error[2:]).all()
+
+
+def test_reading_error_of_angles_across_pi():
+    # The truth turns through π at 1 rad/s, 3.0 -> 3.2 rad, stored wrapped (3.2 - 2π); at
+    # t = 0.1 s it is 3.1 rad. A reading of π + 0.05 rad, stored as 0.05 - π, is 0.0916 rad
+    # ahead; another of 3.0 rad is 0.1 rad behind.
+    t_truth = np.array([0.0, 0.2])
+    truth = np.array([3.0, 3.2 - 2.0 * math.pi])
+    error = reading_error([0.1, 0.1], [0.05 - math.pi, 3.0], t_truth, truth, angle=True)
+    np.testing.assert_allclose(error, [math.pi + 0.05 - 3.1, -0.1], atol=1e-12)
+
+
+def test_normal_fit_of_known_samples():
+    mean, std, count = normal_fit([2.0, 4.0, 4.0, 4.0, 5.0, 5.0, 7.0, 9.0, float('nan')])
+    assert (mean, count) == (5.0, 8)
+    assert std == pytest.approx(math.sqrt(32.0 / 7.0))
+    assert normal_fit([1.0])[0] == 1.0 and math.isnan(normal_fit([1.0])[1])

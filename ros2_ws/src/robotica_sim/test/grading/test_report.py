@@ -2,10 +2,11 @@
 Tests of ``robotica report`` (robotica_sim.grading.report and robotica_sim.cli.report).
 
 The bags are synthetic, written with rosbags: a mobile run on a circular arc whose heading
-crosses ±π, with sensor readings made of the truth plus noise drawn here from a seeded
-generator, so that the statistics the report prints can be checked against the noise itself;
-an arm run with constant joint errors; a run with only some topics. The figures are checked to
-be real images (size, coloured pixels), the page to reference every figure written.
+crosses ±π, 0.05 m inside a concentric reference path, with sensor readings made of the truth
+plus noise drawn from a seeded generator; an arm run with constant joint errors; a run with
+only some topics. The figures are checked to be real images (size, coloured pixels), the page
+to reference every figure written, the tracking errors to be the ones ``robotica grade``
+computes. The numbers in each caption are checked by test_figures.py.
 """
 import argparse
 import html
@@ -19,11 +20,9 @@ import pytest
 from robotica_kin.geodetic import GeodeticOrigin
 from robotica_sim.bags.typestore import ensure_type, jazzy_typestore
 from robotica_sim.cli import report as report_cli
-from robotica_sim.grading.report import (auto_robot_every, default_output, fixes_to_enu,
-                                         gps_origin, normal_fit, reading_error, ReportError,
-                                         robot_poses, write_report)
+from robotica_sim.grading.metrics import compute_metrics
+from robotica_sim.grading.report import default_output, ReportError, write_report
 from robotica_sim.grading.series import load_run
-from robotica_sim.runs.scenario import GpsSpec
 from rosbags.interfaces import Nodetype
 from rosbags.rosbag2 import StoragePlugin, Writer
 
@@ -31,6 +30,7 @@ RATE = 20.0                    # [Hz] of the synthetic streams
 DURATION = 10.0                # [s]
 RADIUS, V, W = 2.0, 0.5, 0.25  # [m], [m/s], [rad/s] the arc of the truth
 THETA0 = 2.0                   # [rad] initial heading: θ crosses π at t = 4.57 s
+PATH_OFFSET = 0.05             # [m] the path's radius minus the truth's: the truth is left of it
 ODOM_OFFSET = (0.01, -0.02, 0.005)  # [m, m, rad] /odom minus truth
 ODOM_VAR = (1e-4, 1e-4, 1e-6)       # [m^2, m^2, rad^2]: 3σ = 0.03 m, 0.03 m, 0.003 rad
 GYRO_BIAS, GYRO_SIGMA = 0.01, 0.05  # [rad/s]
@@ -142,18 +142,19 @@ class BagBuilder:
         self.writer.close()
 
 
-def truth_arc(t):
-    """Return x, y [m], θ [rad] of the arc at times ``t`` (θ not wrapped)."""
+def truth_arc(t, radius=RADIUS):
+    """Return x, y [m], θ [rad] of the arc at times ``t`` (θ not wrapped), or a concentric one."""
     theta = THETA0 + W * t
-    return (RADIUS * (np.sin(theta) - math.sin(THETA0)),
-            RADIUS * (math.cos(THETA0) - np.cos(theta)), theta)
+    centre = (-RADIUS * math.sin(THETA0), RADIUS * math.cos(THETA0))
+    return centre[0] + radius * np.sin(theta), centre[1] - radius * np.cos(theta), theta
 
 
 def write_mobile_bag(path):
-    """Write the mobile run; return the noise drawn for each sensor."""
+    """Write the mobile run: the truth on the arc, the path PATH_OFFSET outside it."""
     rng = np.random.default_rng(42)
     t = np.arange(round(DURATION * RATE) + 1) / RATE
     x, y, theta = truth_arc(t)
+    path_x, path_y, _ = truth_arc(t, RADIUS + PATH_OFFSET)
     noise = {'gyro': rng.normal(GYRO_BIAS, GYRO_SIGMA, t.size),
              'compass': rng.normal(0.0, COMPASS_SIGMA, t.size),
              'gps': rng.normal(0.0, GPS_SIGMA, (t.size, 2))}
@@ -165,7 +166,7 @@ def write_mobile_bag(path):
                                     position=_message(store, 'geometry_msgs/msg/Point',
                                                       x=float(px), y=float(py)),
                                     orientation=_quaternion(store, 0.0)))
-             for px, py in zip(x, y)]
+             for px, py in zip(path_x, path_y)]
     bag.write('/path', 'nav_msgs/msg/Path', 0.0,
               _message(store, 'nav_msgs/msg/Path', header=_header(store, 0.0), poses=poses))
     for k, tk in enumerate(t):
@@ -203,8 +204,6 @@ def write_mobile_bag(path):
                        header=_header(store, DURATION), step=200, real_time_factor=12.5,
                        finished=True))
     bag.close()
-    noise['gps'] = noise['gps'][::GPS_EVERY]
-    return noise
 
 
 def write_arm_bag(path):
@@ -237,13 +236,13 @@ def write_arm_bag(path):
 
 @pytest.fixture(scope='module')
 def mobile(tmp_path_factory):
-    """Write the mobile bag and its report; return the noise drawn, the report, the progress."""
+    """Write the mobile bag and its report; return the run, the report, the progress."""
     root = tmp_path_factory.mktemp('mobile')
-    noise = write_mobile_bag(root / 'bag')
+    write_mobile_bag(root / 'bag')
     progress = []
-    report = write_report(load_run(root / 'bag'), root / 'out', robot_every=2.0,
-                          progress=progress.append)
-    return noise, report, progress
+    run = load_run(root / 'bag')
+    report = write_report(run, root / 'out', robot_every=2.0, progress=progress.append)
+    return run, report, progress
 
 
 @pytest.fixture(scope='module')
@@ -283,76 +282,7 @@ def assert_real_image(path, height, width=800):
     assert np.mean(saturation > 0.2) > 0.003   # lines and patches in colour, not only text
 
 
-# --- the numbers behind the figures -------------------------------------------------------
-
-def test_reading_error_of_a_line_and_outside_the_truth():
-    t_truth = np.array([0.0, 1.0, 2.0])
-    truth = 3.0 * t_truth - 1.0                     # a line: interpolation is exact
-    error = reading_error([0.25, 1.5, 2.5, -0.1], [0.0, 4.0, 0.0, 0.0], t_truth, truth)
-    np.testing.assert_allclose(error[:2], [0.0 - (-0.25), 4.0 - 3.5])
-    assert np.isnan(error[2:]).all()
-
-
-def test_reading_error_of_angles_across_pi():
-    # The truth turns through π at 1 rad/s, 3.0 -> 3.2 rad, stored wrapped (3.2 - 2π); at
-    # t = 0.1 s it is 3.1 rad. A reading of π + 0.05 rad, stored as 0.05 - π, is 0.0916 rad
-    # ahead; another of 3.0 rad is 0.1 rad behind.
-    t_truth = np.array([0.0, 0.2])
-    truth = np.array([3.0, 3.2 - 2.0 * math.pi])
-    error = reading_error([0.1, 0.1], [0.05 - math.pi, 3.0], t_truth, truth, angle=True)
-    np.testing.assert_allclose(error, [math.pi + 0.05 - 3.1, -0.1], atol=1e-12)
-
-
-def test_robot_poses_every_interval():
-    t = np.arange(1001) / 100.0                     # 0 ... 10 s
-    poses = robot_poses(t, t, -t, 0.1 * t, 2.0)
-    np.testing.assert_allclose(poses[:, 0], [0.0, 2.0, 4.0, 6.0, 8.0, 10.0])
-    np.testing.assert_allclose(poses[:, 2], 0.1 * poses[:, 0])
-    with pytest.raises(ValueError, match='every'):
-        robot_poses(t, t, t, t, 0.0)
-
-
-def test_auto_robot_every_draws_at_most_15_intervals():
-    for duration, expected in ((5.0, 0.5), (7.5, 0.5), (7.6, 1.0), (30.0, 2.0), (60.0, 5.0),
-                               (600.0, 60.0)):
-        assert auto_robot_every(duration) == expected
-        assert duration / expected <= 15
-
-
-def test_normal_fit_of_known_samples():
-    mean, std, count = normal_fit([2.0, 4.0, 4.0, 4.0, 5.0, 5.0, 7.0, 9.0, float('nan')])
-    assert (mean, count) == (5.0, 8)
-    assert std == pytest.approx(math.sqrt(32.0 / 7.0))
-
-
-def test_gps_origin_from_scenario_or_default():
-    origin = gps_origin({'sensors': {'gps': {'origin': [40.0, -3.7, 650.0]}}})
-    assert (origin.latitude_deg, origin.longitude_deg, origin.altitude) == ORIGIN
-    default = gps_origin({'name': 'x'})
-    assert (default.latitude_deg, default.longitude_deg, default.altitude) == GpsSpec().origin
-    with pytest.raises(ValueError, match='origin'):
-        gps_origin({'sensors': {'gps': {'origin': [1.0, 2.0]}}})
-
-
-def test_fixes_to_enu_against_the_meridian_radius():
-    # 0.001° north and 0.001° east of the origin, 5 m up. Independent reference: the
-    # meridian radius of curvature M = a (1 - e²) / (1 - e² sin² φ)^1.5 and the prime-vertical
-    # radius N = a / sqrt(1 - e² sin² φ) of WGS-84 (a = 6378137 m, f = 1 / 298.257223563), both
-    # plus the height h of the origin: arcs of (M + h) dφ north and (N + h) cos φ dλ east.
-    a, f = 6378137.0, 1.0 / 298.257223563
-    e2 = f * (2.0 - f)
-    phi = math.radians(ORIGIN[0])
-    m = a * (1.0 - e2) / (1.0 - e2 * math.sin(phi)**2)**1.5
-    n = a / math.sqrt(1.0 - e2 * math.sin(phi)**2)
-    step = math.radians(0.001)
-    lat, lon, alt = ORIGIN
-    enu = fixes_to_enu(GeodeticOrigin(*ORIGIN), [lat + 0.001, lat, float('nan')],
-                       [lon, lon + 0.001, lon], [alt, alt + 5.0, 0.0])
-    np.testing.assert_allclose(enu[0, :2], [0.0, (m + ORIGIN[2]) * step], atol=2e-3)
-    np.testing.assert_allclose(enu[1], [(n + ORIGIN[2]) * math.cos(phi) * step, 0.0, 5.0],
-                               atol=2e-3)
-    assert np.isnan(enu[2]).all()
-
+# --- the report --------------------------------------------------------------------------
 
 def test_default_output_beside_the_bag():
     assert default_output(Path('runs/demo/bag')) == Path('runs/demo/report')
@@ -382,60 +312,44 @@ def test_html_references_every_png_and_the_scenario(mobile):
         assert html.escape(figure.caption) in page
 
 
-def test_tracking_error_statistics(mobile):
-    text = caption(mobile[1], 'tracking_errors')
-    # 0.1 sin(2π t / 5) over two whole periods sampled 200 times, plus a zero at t = 10 s:
-    # the mean square is 0.01 (100 / 201).
-    rms, peak = numbers_after(text, 'cross-track RMS')[:2]
-    assert rms == pytest.approx(0.1 * math.sqrt(100.0 / 201.0), rel=1e-3)
-    assert peak == pytest.approx(0.1, rel=1e-3)
-    assert numbers_after(text, 'heading RMS')[:2] == [0.05, 0.05]
-    assert 'along-track' not in text
+def test_tracking_errors_are_those_robotica_grade_computes(mobile):
+    # One projection (grading.metrics.path_errors): the true errors the report prints are
+    # the grade's metrics, here a cross-track error of PATH_OFFSET up to the chords of the
+    # path (sagitta (0.0256 m)^2 / (8 * 2.05 m) = 4e-5 m). The tracker's own errors are the
+    # 0.1 sin(2π t / 5) m it published: mean square 0.01 * 100 / 201 over 201 samples.
+    run, report, _ = mobile
+    true, tracker = caption(report, 'tracking_errors').split('As the tracker')
+    metrics = compute_metrics(run).values
+    rms, peak = numbers_after(true, 'cross-track RMS')[:2]
+    assert (rms, peak) == pytest.approx((metrics['rms_cross_track'],
+                                         metrics['max_cross_track']), rel=PRINTED)
+    assert rms == pytest.approx(PATH_OFFSET, abs=1e-4)
+    assert numbers_after(true, 'heading RMS')[:2] == pytest.approx(
+        [metrics['rms_heading_error'], metrics['max_heading_error']], rel=PRINTED)
+    assert numbers_after(tracker, 'cross-track RMS')[0] == pytest.approx(
+        0.1 * math.sqrt(100.0 / 201.0), rel=PRINTED)
 
 
-def test_estimation_errors_and_their_3_sigma_band(mobile):
-    text = caption(mobile[1], 'estimation')
-    assert numbers_after(text, 'x RMS')[:2] == pytest.approx([ODOM_OFFSET[0], 100.0])
-    assert numbers_after(text, 'y RMS')[:2] == pytest.approx([-ODOM_OFFSET[1], 100.0])
-    # 0.005 rad outside 3 sqrt(1e-6) = 0.003 rad: no sample inside the band.
-    assert numbers_after(text, 'theta RMS')[:2] == pytest.approx([ODOM_OFFSET[2], 0.0])
-
-
-def test_gyro_bias_and_sigma_are_those_of_the_noise(mobile):
-    noise, report, _ = mobile
-    mean, std = numbers_after(caption(report, 'gyro'), 'mean (bias)')[:2]
-    assert mean == pytest.approx(np.mean(noise['gyro']), rel=PRINTED)
-    assert std == pytest.approx(np.std(noise['gyro'], ddof=1), rel=PRINTED)
-    assert std == pytest.approx(GYRO_SIGMA, rel=0.15)
-
-
-def test_compass_error_is_wrapped_across_pi(mobile):
-    noise, report, _ = mobile
-    text = caption(report, 'compass')
-    std = numbers_after(text, 'σ')[0]
-    assert std == pytest.approx(np.std(noise['compass'], ddof=1), rel=PRINTED)
-    assert std == pytest.approx(COMPASS_SIGMA, rel=0.15)
-
-
-def test_gps_fixes_in_the_scenario_origin_enu_frame(mobile):
-    noise, report, _ = mobile
-    text = caption(report, 'gps')
-    assert '40° N, 3.7° W, 650 m' in text
-    east_mean, east_std = numbers_after(text, 'east mean')[:2]
-    north_mean, north_std = numbers_after(text, 'north mean')[:2]
-    np.testing.assert_allclose([east_mean, north_mean], np.mean(noise['gps'], axis=0),
-                               rtol=PRINTED)
-    np.testing.assert_allclose([east_std, north_std], np.std(noise['gps'], axis=0, ddof=1),
-                               rtol=PRINTED)
-    assert numbers_after(text, 'claims σ')[0] == pytest.approx(GPS_SIGMA)
-
-
-def test_trajectory_caption_names_the_robot_interval(mobile):
-    text = caption(mobile[1], 'trajectory')
-    assert 'every 2 s' in text
-    final = math.hypot(ODOM_OFFSET[0], ODOM_OFFSET[1])
-    assert numbers_after(text, 'Final position error of /odom:')[0] == pytest.approx(
-        final, abs=1e-3)
+def test_tracking_errors_need_the_truth_and_path_or_the_tracker(tmp_path):
+    # No /path_tracker/tracking_error: the figure still shows the truth against /path.
+    bag = BagBuilder(tmp_path / 'bag')
+    store = bag.store
+    x, y, theta = truth_arc(np.arange(50) / 10.0)
+    poses = [_message(store, 'geometry_msgs/msg/PoseStamped', header=_header(store, 0.0),
+                      pose=_message(store, 'geometry_msgs/msg/Pose',
+                                    position=_message(store, 'geometry_msgs/msg/Point',
+                                                      x=float(px), y=float(py))))
+             for px, py in zip(x, y)]
+    bag.write('/path', 'nav_msgs/msg/Path', 0.0,
+              _message(store, 'nav_msgs/msg/Path', header=_header(store, 0.0), poses=poses))
+    for k in range(50):
+        bag.write('/ground_truth/odom', 'nav_msgs/msg/Odometry', k / 10.0,
+                  _odometry(store, k / 10.0, x[k], y[k], theta[k], V, W))
+    bag.close()
+    report = write_report(load_run(tmp_path / 'bag'), tmp_path / 'out')
+    assert [f.path.stem for f in report.figures] == ['trajectory', 'tracking_errors']
+    text = caption(report, 'tracking_errors')
+    assert 'True errors' in text and 'As the tracker' not in text
 
 
 # --- arm and partial reports --------------------------------------------------------------
@@ -444,12 +358,10 @@ def test_arm_report_draws_the_joint_figures(arm):
     assert {f.path.stem for f in arm.figures} == ARM_FIGURES
     for figure in arm.figures:
         assert_real_image(figure.path, 500)
+    # The joints' names and errors come through from the bag.
     text = caption(arm, 'joint_errors')
     for name, error in zip(('shoulder', 'elbow'), JOINT_ERRORS):
-        rms, peak, final = numbers_after(text, f'{name} RMS')[:3]
-        assert (rms, peak, final) == pytest.approx((abs(error), abs(error), error))
-    # τ = 3 + sin t on the shoulder, t in [0, 2] s: peak 4 N m at t = π/2.
-    assert numbers_after(caption(arm, 'joint_torques'), 'shoulder')[0] == pytest.approx(4.0)
+        assert numbers_after(text, f'{name} RMS')[0] == pytest.approx(abs(error))
 
 
 def test_missing_topics_skip_their_figures(tmp_path):

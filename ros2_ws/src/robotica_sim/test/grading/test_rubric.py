@@ -4,9 +4,10 @@ from pathlib import Path
 import pytest
 from robotica_sim.grading.metrics import RunMetrics
 from robotica_sim.grading.rubric import (Bound, check_metrics, load_rubric, parse_rubric,
-                                         RubricError)
+                                         resolve_rubric, RubricError)
+from robotica_sim.runs import shipped as shipped_module
 
-SHIPPED = sorted((Path(__file__).resolve().parents[1] / 'rubrics').glob('*.yaml'))
+SHIPPED = sorted((Path(__file__).resolve().parents[2] / 'rubrics').glob('*.yaml'))
 
 
 def test_a_rubric_is_parsed_with_its_bounds_and_parameters():
@@ -52,6 +53,22 @@ def test_files_malformed_yaml_and_missing(tmp_path):
     good = tmp_path / 'good.yaml'
     good.write_text('checks:\n  completion: {min: 0.9}\n')
     assert load_rubric(good).title == 'good'          # title defaults to the file's name
+
+
+def test_rubrics_are_found_by_path_or_shipped_name(tmp_path, monkeypatch):
+    # A fake share directory stands for the installed package.
+    (tmp_path / 'rubrics').mkdir()
+    for name in ('alpha', 'beta'):
+        (tmp_path / 'rubrics' / f'{name}.yaml').write_text('checks: {time: {max: 1}}\n')
+    monkeypatch.setattr(shipped_module, 'get_package_share_directory',
+                        lambda package: str(tmp_path))
+    assert resolve_rubric('alpha') == tmp_path / 'rubrics' / 'alpha.yaml'
+    assert resolve_rubric('beta.yaml') == tmp_path / 'rubrics' / 'beta.yaml'
+    local = tmp_path / 'alpha'   # a file of that name here is taken first
+    local.write_text('checks: {time: {max: 2}}\n')
+    assert resolve_rubric(str(local)) == local
+    with pytest.raises(RubricError, match="no rubric file 'gamma'; shipped rubrics: alpha, beta$"):
+        resolve_rubric('gamma')
 
 
 @pytest.mark.parametrize('path', SHIPPED, ids=[p.stem for p in SHIPPED])

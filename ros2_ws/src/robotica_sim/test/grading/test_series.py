@@ -9,10 +9,12 @@ import math
 
 import numpy as np
 import pytest
+from robotica_kin.geodetic import GeodeticOrigin
 from robotica_sim.bags.info import BagError
 from robotica_sim.bags.typestore import ensure_type, jazzy_typestore
 from robotica_sim.grading.metrics import compute_metrics
-from robotica_sim.grading.series import load_run, Series
+from robotica_sim.grading.series import fixes_to_enu, gps_origin, load_run, Series
+from robotica_sim.runs.scenario import GpsSpec
 from rosbags.rosbag2 import StoragePlugin, Writer
 
 SCENARIO = 'name: synthetic\nseed: 3\narm:\n  model: two_link_arm\n  lengths: [3.0, 1.0]\n'
@@ -260,3 +262,38 @@ def test_a_known_topic_of_another_type_is_ignored_with_the_reason(tmp_path):
     reason = compute_metrics(run).absent['rms_angular_command']
     assert reason == ('cannot use /cmd_vel: it has type geometry_msgs/msg/TwistStamped, not '
                       'geometry_msgs/msg/Twist')
+
+
+# --- GPS fixes in the world frame ---------------------------------------------------------
+
+ORIGIN = (40.0, -3.7, 650.0)   # [deg, deg, m]: not the default origin
+
+
+def test_gps_origin_from_scenario_or_default():
+    origin = gps_origin({'sensors': {'gps': {'origin': [40.0, -3.7, 650.0]}}})
+    assert (origin.latitude_deg, origin.longitude_deg, origin.altitude) == ORIGIN
+    default = gps_origin({'name': 'x'})
+    assert (default.latitude_deg, default.longitude_deg, default.altitude) == GpsSpec().origin
+    assert gps_origin(None) == default
+    with pytest.raises(ValueError, match='origin'):
+        gps_origin({'sensors': {'gps': {'origin': [1.0, 2.0]}}})
+
+
+def test_fixes_to_enu_against_the_meridian_radius():
+    # 0.001° north and 0.001° east of the origin, 5 m up. Independent reference: the
+    # meridian radius of curvature M = a (1 - e²) / (1 - e² sin² φ)^1.5 and the prime-vertical
+    # radius N = a / sqrt(1 - e² sin² φ) of WGS-84 (a = 6378137 m, f = 1 / 298.257223563), both
+    # plus the height h of the origin: arcs of (M + h) dφ north and (N + h) cos φ dλ east.
+    a, f = 6378137.0, 1.0 / 298.257223563
+    e2 = f * (2.0 - f)
+    phi = math.radians(ORIGIN[0])
+    m = a * (1.0 - e2) / (1.0 - e2 * math.sin(phi)**2)**1.5
+    n = a / math.sqrt(1.0 - e2 * math.sin(phi)**2)
+    step = math.radians(0.001)
+    lat, lon, alt = ORIGIN
+    enu = fixes_to_enu(GeodeticOrigin(*ORIGIN), [lat + 0.001, lat, float('nan'), 91.0],
+                       [lon, lon + 0.001, lon, lon], [alt, alt + 5.0, 0.0, 0.0])
+    np.testing.assert_allclose(enu[0, :2], [0.0, (m + ORIGIN[2]) * step], atol=2e-3)
+    np.testing.assert_allclose(enu[1], [(n + ORIGIN[2]) * math.cos(phi) * step, 0.0, 5.0],
+                               atol=2e-3)
+    assert np.isnan(enu[2:]).all()   # no fix, and a latitude beyond the pole

@@ -11,7 +11,7 @@ from robotica_sim.runs.plan import (ARM_RECORDED_TOPICS, CONTROLLER_STATE_TOPIC,
                                     TRACKING_ERROR_TOPIC, TRAJECTORY_TOPIC)
 from robotica_sim.runs.scenario import load_scenario, PathSpec, Scenario, ScenarioError
 
-SHIPPED = Path(__file__).resolve().parents[1] / 'scenarios'
+SHIPPED = Path(__file__).resolve().parents[2] / 'scenarios'
 DEMO = SHIPPED / 'demo.yaml'
 START_ORDER = ['path_publisher', 'encoder_emulator', 'odometry', 'path_tracker', 'simulator']
 

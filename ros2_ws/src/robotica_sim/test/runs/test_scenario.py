@@ -5,10 +5,10 @@ import textwrap
 from ament_index_python.packages import PackageNotFoundError
 import pytest
 
-from robotica_sim.runs import scenario as scenario_module
+from robotica_sim.runs import shipped as shipped_module
 from robotica_sim.runs.scenario import load_scenario, resolve_scenario_path, ScenarioError
 
-PACKAGE_DIR = Path(__file__).resolve().parents[1]
+PACKAGE_DIR = Path(__file__).resolve().parents[2]
 SHIPPED = PACKAGE_DIR / 'scenarios'
 DEMO = SHIPPED / 'demo.yaml'
 
@@ -179,7 +179,7 @@ def test_shipped_names_are_resolved_and_listed(tmp_path, monkeypatch):
     (tmp_path / 'scenarios').mkdir()
     shipped = write(tmp_path / 'scenarios', 'duration: 3.0\n', name='alpha.yaml')
     write(tmp_path / 'scenarios', 'duration: 4.0\n', name='beta.yaml')
-    monkeypatch.setattr(scenario_module, 'get_package_share_directory',
+    monkeypatch.setattr(shipped_module, 'get_package_share_directory',
                         lambda package: str(tmp_path))
     assert resolve_scenario_path('alpha') == shipped
     assert resolve_scenario_path('alpha.yaml') == shipped
@@ -192,7 +192,7 @@ def test_without_an_installed_package_nothing_is_shipped(monkeypatch):
     def not_found(package):
         raise PackageNotFoundError(package)
 
-    monkeypatch.setattr(scenario_module, 'get_package_share_directory', not_found)
+    monkeypatch.setattr(shipped_module, 'get_package_share_directory', not_found)
     with pytest.raises(ScenarioError, match='none found'):
         resolve_scenario_path('demo_that_does_not_exist')
 
