@@ -23,6 +23,7 @@ import rclpy
 from rclpy.executors import SingleThreadedExecutor
 from rclpy.qos import QoSProfile, ReliabilityPolicy
 from rclpy.signals import SignalHandlerOptions
+from robotica_sim.bags.info import BagError
 from robotica_sim.grading.summary import summarize_bag
 from robotica_sim.runs.plan import NodeSpec, plan_run, recorded_topics
 from robotica_sim.runs.scenario import load_scenario, ScenarioError
@@ -303,7 +304,12 @@ def main(args: argparse.Namespace) -> int:
     if not (bag / 'metadata.yaml').is_file():
         print(f'robotica run: no bag was written; logs in {run_dir / "logs"}', file=sys.stderr)
         return code or 1
-    summary = summarize_bag(bag)
+    try:
+        summary = summarize_bag(bag)
+    except BagError as err:
+        print(f'robotica run: cannot summarise the run: {err}; logs in {run_dir / "logs"}',
+              file=sys.stderr)
+        return code or 1
     if args.json:
         print(json.dumps({**summary.as_dict(), 'exit_code': code}))
     else:

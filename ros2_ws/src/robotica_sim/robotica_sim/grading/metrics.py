@@ -23,11 +23,11 @@ at its stamp) and :func:`normal_fit` (mean, standard deviation of an error).
 """
 from dataclasses import dataclass, field
 import math
-from typing import Any
+from typing import Any, Iterator
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from robotica_ctrl.mobile.path import PolylinePath
+from robotica_ctrl.mobile.path import PathProjection, PolylinePath
 from robotica_kin.angles import wrap_to_pi
 from robotica_sim.grading.series import RunSeries, Series, TOPICS
 
@@ -174,13 +174,18 @@ class RunMetrics:
 
 def rms(values: ArrayLike) -> float:
     """
-    Return the root mean square of ``values`` (any shape, over every element).
+    Return the root mean square of ``values`` (any shape, over every element; same unit).
+
+    The one RMS of the project: grading, the run summary, the report and the benchmarks use
+    it. An empty input gives NaN (there is no mean to take); a NaN in the input gives NaN.
 
     >>> rms([3.0, -3.0, 3.0, -3.0])
     3.0
+    >>> rms([])
+    nan
     """
     a = np.asarray(values, dtype=np.float64)
-    return float(math.sqrt(np.mean(a * a)))
+    return math.sqrt(float(np.mean(a * a))) if a.size else math.nan
 
 
 def total_variation(u: ArrayLike) -> float:
@@ -210,24 +215,43 @@ def path_errors(path: PolylinePath, x: ArrayLike, y: ArrayLike, theta: ArrayLike
     """
     Project poses onto a path in order, following the progress (book fig. 9.4, step 1).
 
-    The first pose is projected onto the whole path; each later one within ``window`` [m] of
-    arc length around the previous projection, as the trackers do, so that a closed or
-    self-crossing path is followed lap by lap.
+    The one path projection of the project: ``robotica grade``, the summary line of
+    ``robotica run``, ``robotica report`` and the tracking benchmark all use it.
+
+    Each pose after the first is projected within ``window`` [m] of arc length around the
+    previous projection, as the trackers do
+    (:class:`~robotica_ctrl.mobile.tracker_base.PathTrackerBase`), so that a pose near a
+    crossing is measured against the branch being driven. On a closed path the search goes on
+    past the end into the next lap. The start is chosen among the local closest points of the
+    first position (one per stretch of ``window`` of the path, so every branch that passes near
+    it is a candidate): from each, the poses are followed until the trajectory has moved
+    ``2 window`` [m] from its start (or ends), and the candidate with the smallest sum of
+    squared cross-track errors over that stretch wins (the first in s on a tie). A run that
+    starts at the beginning of the path starts there; one that starts 1 mm behind the crossing
+    of a figure eight is measured on the lobe it drives, not on the other one; one that starts
+    on the far lobe is measured from there.
 
     Parameters
     ----------
     path : PolylinePath
         The reference, in the frame of the poses.
     x, y, theta : array_like, shape (n,)
-        Poses [m, m, rad], REP-103.
+        Poses [m, m, rad], REP-103; n >= 1.
     window : float
-        Half-width [m] of the search around the progress.
+        Half-width [m] of the search around the progress (> 0).
 
     Returns
     -------
-    s, cross_track, heading_error : ndarray, shape (n,)
-        Arc length of the closest point [m], signed lateral offset [m] (> 0 left) and the
-        heading minus the tangent heading [rad], wrapped to (-pi, pi].
+    progress, cross_track, heading_error : ndarray, shape (n,)
+        Progress [m]: the arc length of the closest point, plus the path length for each lap
+        completed on a closed path (a start within ``window`` behind the end of a closed path
+        is just behind its start: negative); signed lateral offset [m] (> 0 left); heading
+        minus the tangent heading [rad], wrapped to (-pi, pi].
+
+    Raises
+    ------
+    ValueError
+        If the inputs differ in length, are empty or not finite, or ``window`` is not > 0.
 
     Examples
     --------
@@ -237,15 +261,61 @@ def path_errors(path: PolylinePath, x: ArrayLike, y: ArrayLike, theta: ArrayLike
 
     """
     xs, ys = np.asarray(x, dtype=np.float64), np.asarray(y, dtype=np.float64)
-    n = len(xs)
-    s, cross, tangent = np.empty(n), np.empty(n), np.empty(n)
-    hint: float | None = None
-    for k, point in enumerate(np.column_stack([xs, ys])):
-        projection = (path.project(point) if hint is None
-                      else path.project(point, s_hint=hint, window=window))
+    thetas = np.asarray(theta, dtype=np.float64)
+    if not (xs.ndim == 1 and xs.shape == ys.shape == thetas.shape and xs.size):
+        raise ValueError(f'x, y and theta must be (n,) arrays of one length n >= 1, got '
+                         f'{xs.shape}, {ys.shape}, {thetas.shape}')
+    if not (math.isfinite(window) and window > 0.0):
+        raise ValueError(f'window must be a finite number > 0 m, got {window!r}')
+    points = np.column_stack([xs, ys])
+    if not (np.all(np.isfinite(points)) and np.all(np.isfinite(thetas))):
+        raise ValueError('poses must be finite')
+    n = len(points)
+    progress, cross, tangent = np.empty(n), np.empty(n), np.empty(n)
+    steps = _follow(path, points, _start_progress(path, points, window), window)
+    for k, (s, projection) in enumerate(steps):
+        progress[k], cross[k] = s, projection.cross_track
+        tangent[k] = projection.tangent_heading
+    return progress, cross, wrap_to_pi(thetas - tangent)
+
+
+def _follow(path: PolylinePath, points: NDArray[np.float64], start: float,
+            window: float) -> Iterator[tuple[float, PathProjection]]:
+    """Yield the progress [m] and projection of each point, from progress ``start`` [m]."""
+    length = path.length
+    laps = math.floor(start / length)
+    hint = start - laps * length
+    for point in points:
+        projection = path.project(point, s_hint=hint, window=window)
+        if path.closed and hint + window > length:
+            # Past the end of a closed path the search goes on from its start (next lap).
+            wrapped = path.project(point, s_hint=0.0, window=hint + window - length)
+            if wrapped.distance < projection.distance:
+                projection, laps = wrapped, laps + 1
         hint = projection.s
-        s[k], cross[k], tangent[k] = hint, projection.cross_track, projection.tangent_heading
-    return s, cross, wrap_to_pi(np.asarray(theta, dtype=np.float64) - tangent)
+        yield laps * length + hint, projection
+
+
+def _start_progress(path: PolylinePath, points: NDArray[np.float64], window: float) -> float:
+    """Return the progress [m] at which :func:`path_errors` starts following ``points``."""
+    first, length = points[0], path.length
+    candidates = set()
+    for hint in np.append(np.arange(0.0, length, window), length).tolist():
+        s = path.project(first, s_hint=hint, window=window).s
+        # A closest point cut at an inner end of its search interval is no local minimum:
+        # the neighbouring intervals (they overlap by half) find the minimum beyond it.
+        if not any(abs(s - end) <= 1e-9 and 0.0 < end < length
+                   for end in (hint - window, hint + window)):
+            candidates.add(s - length if path.closed and s > length - window else s)
+    if len(candidates) == 1:
+        return candidates.pop()
+    moved = np.hypot(points[:, 0] - first[0], points[:, 1] - first[1])
+    beyond = np.flatnonzero(moved >= 2.0 * window)
+    stretch = points[:beyond[0] + 1] if beyond.size else points
+    scores = [(sum(p.cross_track ** 2 for _, p in _follow(path, stretch, start, window)), start)
+              for start in sorted(candidates)]
+    best = min(score for score, _ in scores)
+    return next(start for score, start in scores if score <= best * (1.0 + 1e-9) + 1e-12)
 
 
 def pose_errors(truth: Series, estimate: Series) -> tuple[NDArray[np.float64], ...]:

@@ -1,21 +1,28 @@
 """
 The one-line summary of a run, computed from its bag.
 
-Duration from ``/clock``; real-time factor and lockstep timeouts from the simulator's last
-``~/status``; cross-track error of the ground truth (``/ground_truth/odom``) against the
-reference ``/path``: the final one and the RMS over the run (the distance to the path, signed
-positive to the left). For a manipulator run, the joint position errors ``e = q_d - q`` of the
-joint controller's ``~/controller_state``: per joint, the RMS over the run and the largest
-magnitude over its last quarter (the steady state of the book's ch. 8 examples).
+Read through the one loader (:func:`robotica_sim.grading.series.load_run`) and measured with the
+one projection and RMS of :mod:`robotica_sim.grading.metrics`, so that the line ``robotica run``
+prints and ``robotica grade`` agree: duration from ``/clock``; real-time factor and lockstep
+timeouts from the simulator's last ``~/status``; cross-track error of the ground truth
+(``/ground_truth/odom``) against the reference ``/path`` (signed positive to the left,
+:func:`~robotica_sim.grading.metrics.path_errors` with the default search window): the final
+one and the RMS over the run. For a manipulator run, the joint position errors ``e = q_d - q``
+of the joint controller's ``~/controller_state``: per joint, the RMS over the run and the
+largest magnitude over its last quarter (the steady state of the book's ch. 8 examples).
 """
 from dataclasses import asdict, dataclass
-import math
 from pathlib import Path
-from typing import Any, Optional
+from typing import Optional
 
 import numpy as np
 from robotica_ctrl.mobile.path import PolylinePath
-from rosbags.highlevel import AnyReader
+from robotica_sim.grading.metrics import MetricParams, path_errors, rms
+from robotica_sim.grading.series import load_run, TOPICS
+
+__all__ = ['RunSummary', 'summarize_bag']
+
+_SUMMARY_TOPICS = tuple(TOPICS[role] for role in ('path', 'truth', 'status', 'controller'))
 
 
 @dataclass(frozen=True)
@@ -56,51 +63,33 @@ class RunSummary:
 
 
 def summarize_bag(bag: Path) -> RunSummary:
-    """Read a run's bag and compute its summary. Raises ValueError when it is not a bag."""
-    path_points = None
-    truth = []
-    joint_errors: list[tuple[float, list[float]]] = []
-    status: Any = None
-    clock = 0.0
-    count = 0
-    try:
-        reader = AnyReader([Path(bag)])
-    except Exception as err:  # rosbags raises its own error classes for broken bags
-        raise ValueError(f'{bag}: not a readable bag ({err})') from None
-    with reader:
-        wanted = {'/path', '/ground_truth/odom', '/simulator/status', '/clock',
-                  '/joint_controller/controller_state'}
-        connections = [c for c in reader.connections if c.topic in wanted]
-        count = sum(c.msgcount for c in reader.connections)
-        for connection, _, raw in reader.messages(connections=connections):
-            msg: Any = reader.deserialize(raw, connection.msgtype)
-            if connection.topic == '/path':
-                path_points = np.array([[p.pose.position.x, p.pose.position.y]
-                                        for p in msg.poses])
-            elif connection.topic == '/ground_truth/odom':
-                truth.append((msg.pose.pose.position.x, msg.pose.pose.position.y))
-            elif connection.topic == '/simulator/status':
-                status = msg
-            elif connection.topic == '/joint_controller/controller_state':
-                joint_errors.append((msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9,
-                                     list(msg.position_error)))
-            else:
-                clock = max(clock, msg.clock.sec + msg.clock.nanosec * 1e-9)
-    final = rms = None
-    if path_points is not None and len(path_points) >= 2 and truth:
-        path = PolylinePath(path_points)
-        errors = np.array([path.project(p).cross_track for p in truth])
-        final = float(errors[-1])
-        rms = float(math.sqrt(np.mean(errors ** 2)))
+    """
+    Read a run's bag and compute its summary.
+
+    Raises
+    ------
+    robotica_sim.bags.info.BagError
+        If ``bag`` is not a readable bag.
+
+    """
+    run = load_run(bag, _SUMMARY_TOPICS)
+    final = rms_cross = None
+    truth = run.truth
+    if run.path is not None and len(run.path) >= 2 and truth is not None and len(truth):
+        _, cross, _ = path_errors(PolylinePath(run.path), truth['x'], truth['y'],
+                                  truth['theta'], MetricParams().search_window)
+        final, rms_cross = float(cross[-1]), rms(cross)
     rms_joint = late_joint = None
-    if joint_errors:
-        times = np.array([t for t, _ in joint_errors])
-        errors = np.array([e for _, e in joint_errors])
-        rms_joint = np.sqrt(np.mean(errors ** 2, axis=0)).tolist()
-        late_joint = np.max(np.abs(errors[times >= 0.75 * times[-1]]), axis=0).tolist()
-    return RunSummary(bag=str(bag), duration=clock,
-                      steps=int(status.step) if status is not None else 0,
-                      real_time_factor=float(status.real_time_factor) if status else 0.0,
-                      lockstep_timeouts=int(status.lockstep_timeouts) if status else 0,
-                      message_count=count, final_cross_track=final, rms_cross_track=rms,
-                      rms_joint_error=rms_joint, max_late_joint_error=late_joint)
+    controller = run.controller
+    if controller is not None and len(controller):
+        errors = controller['position_error']
+        rms_joint = [rms(column) for column in errors.T]
+        late = errors[controller.t >= 0.75 * controller.t[-1]]
+        late_joint = np.max(np.abs(late), axis=0).tolist()
+    status = run.status or {}
+    return RunSummary(bag=str(bag), duration=run.duration, steps=int(status.get('step', 0)),
+                      real_time_factor=float(status.get('real_time_factor', 0.0)),
+                      lockstep_timeouts=int(status.get('lockstep_timeouts', 0)),
+                      message_count=sum(run.counts.values()), final_cross_track=final,
+                      rms_cross_track=rms_cross, rms_joint_error=rms_joint,
+                      max_late_joint_error=late_joint)

@@ -12,9 +12,11 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from robotica_ctrl.mobile.path import PolylinePath
+from robotica_ctrl.mobile.path_shapes import circle, figure_eight, straight_line
 from robotica_sim.grading.metrics import (compute_metrics, energy, MetricParams, METRICS,
-                                          normal_fit, overshoot, reading_error, settling_time,
-                                          total_variation)
+                                          normal_fit, overshoot, path_errors, reading_error,
+                                          rms, settling_time, total_variation)
 from robotica_sim.grading.series import RunSeries, Series, TOPICS
 
 
@@ -248,6 +250,102 @@ def test_helpers_against_hand_values():
 def test_params_are_checked(field, value):
     with pytest.raises(ValueError, match=field):
         MetricParams(**{field: value})
+
+
+def reference_rms(values):
+    """Root mean square, written here for the reference values."""
+    return math.sqrt(sum(v * v for v in np.ravel(values)) / np.size(values))
+
+
+def test_rms_of_hand_values_and_of_nothing():
+    assert rms([3.0, 4.0]) == pytest.approx(math.sqrt(12.5))   # sqrt((9 + 16) / 2)
+    assert rms([0.1, -0.1, 0.1]) == pytest.approx(0.1)         # the sign does not count
+    assert rms(np.full((3, 2), -2.0)) == 2.0                   # every element of any shape
+    assert math.isnan(rms([]))
+    assert math.isnan(rms([1.0, math.nan]))
+
+
+def test_path_errors_left_and_right_of_a_line_and_wrapped_heading():
+    line = PolylinePath(straight_line([0.0, 0.0], [10.0, 0.0]))
+    x = np.linspace(0.5, 9.5, 50)
+    s, cross, heading = path_errors(line, x, np.full(50, 0.1), np.zeros(50), 1.0)
+    np.testing.assert_allclose(s, x, atol=1e-12)
+    np.testing.assert_allclose(cross, 0.1, atol=1e-12)
+    np.testing.assert_allclose(heading, 0.0, atol=1e-12)
+    _, cross, heading = path_errors(line, [1.0, 2.0], [-0.2, -0.2],
+                                    [0.3, 3.0 * math.pi - 0.1], 1.0)
+    np.testing.assert_allclose(cross, [-0.2, -0.2])
+    np.testing.assert_allclose(heading, [0.3, math.pi - 0.1])
+
+
+def test_path_errors_outside_a_counter_clockwise_circle_is_right_of_it():
+    # 0.1 m outside a circle of radius 2 m, heading along its tangent: e = -0.1 m, psi = 0
+    # up to the polyline's chords (sagitta r (1 - cos(0.0125)) = 0.16 mm, half-angle
+    # 0.0125 rad of a 0.05 m segment).
+    path = PolylinePath(circle([0.0, 0.0], 2.0))
+    angles = np.linspace(0.0, 2.0 * math.pi, 200, endpoint=False)
+    _, cross, heading = path_errors(path, 2.1 * np.cos(angles), 2.1 * np.sin(angles),
+                                    angles + math.pi / 2, 1.0)
+    np.testing.assert_allclose(cross, -0.1, atol=2e-4)
+    np.testing.assert_allclose(heading, 0.0, atol=0.013)
+
+
+def figure_eight_offset(radius, offset, start, stop, step=0.01):
+    """
+    Poses ``offset`` [m] left of the figure eight of ``radius`` [m], arc lengths start..stop.
+
+    Written here from the shape's definition (path_shapes.figure_eight's docstring): from the
+    origin heading +x, the upper circle (centre (0, r)) counter-clockwise, then the lower one
+    (centre (0, -r)) clockwise; left of the upper circle is inward (radius r - offset), left
+    of the lower one outward (radius r + offset). Arc lengths are of the path (0..4 pi r),
+    taken modulo its length, so that a start before 0 is behind the crossing.
+    """
+    length = 4.0 * math.pi * radius
+    poses = []
+    for s in np.arange(start, stop, step):
+        s %= length
+        if s < 0.5 * length:   # upper circle, counter-clockwise from the bottom
+            a = -0.5 * math.pi + s / radius
+            rho = radius - offset
+            poses.append((rho * math.cos(a), radius + rho * math.sin(a), a + 0.5 * math.pi))
+        else:                  # lower circle, clockwise from the top
+            a = 0.5 * math.pi - (s - 0.5 * length) / radius
+            rho = radius + offset
+            poses.append((rho * math.cos(a), -radius + rho * math.sin(a), a - 0.5 * math.pi))
+    return np.array(poses)
+
+
+@pytest.mark.parametrize('start', [-0.001, 0.0, 0.75 * 4.0 * math.pi * 2.0, 0.3 * 8.0 * math.pi])
+def test_figure_eight_offset_is_measured_on_the_lobe_it_drives(start):
+    # 0.1 m left of the 2 m figure eight for one lap from ``start`` [m of arc length]: from
+    # 1 mm behind the crossing (where the closest point of the path is on the other lobe's
+    # end as much as on this lobe's start), from the crossing, from the far (lower) lobe and
+    # from the upper one. RMS cross-track 0.100 m up to the chords (0.16 mm, as above).
+    path = PolylinePath(figure_eight(2.0))
+    poses = figure_eight_offset(2.0, 0.1, start, start + path.length - 0.01)
+    _, cross, heading = path_errors(path, poses[:, 0], poses[:, 1], poses[:, 2], 2.0)
+    assert reference_rms(cross) == pytest.approx(0.100, abs=5e-4)
+    np.testing.assert_allclose(cross, 0.1, atol=1e-3)
+    assert np.max(np.abs(heading)) < 0.03   # the chords' heading steps (0.025 rad)
+
+
+def test_path_errors_starts_at_the_start_of_a_closed_path_not_its_end():
+    # A circle starts and ends at the same point: progress 0, not the end (where it could
+    # not advance), so that the lap is followed.
+    path = PolylinePath(circle([0.0, 0.0], 1.0, start_angle=-0.5 * math.pi))
+    angles = np.linspace(-0.5 * math.pi, 1.0 * math.pi, 100)
+    s, cross, _ = path_errors(path, np.cos(angles), np.sin(angles), angles + 0.5 * math.pi, 0.5)
+    assert s[0] == pytest.approx(0.0, abs=1e-9)
+    assert s[-1] == pytest.approx(1.5 * math.pi, rel=1e-3)
+    np.testing.assert_allclose(cross, 0.0, atol=4e-4)   # sagitta 1 (1 - cos(0.025))
+
+
+@pytest.mark.parametrize('x, y, theta, window', [
+    ([], [], [], 1.0), ([0.0, 1.0], [0.0], [0.0, 0.0], 1.0), ([math.nan], [0.0], [0.0], 1.0),
+    ([0.0], [0.0], [0.0], 0.0), ([0.0], [0.0], [0.0], math.inf)])
+def test_path_errors_refuses_bad_input(x, y, theta, window):
+    with pytest.raises(ValueError):
+        path_errors(PolylinePath([[0.0, 0.0], [1.0, 0.0]]), x, y, theta, window)
 
 
 # --- sensor errors (the report's sensor figures) ------------------------------------------
