@@ -36,7 +36,8 @@ from numpy.typing import ArrayLike, NDArray
 from robotica_ctrl.mobile.path import PolylinePath
 from robotica_kin.angles import wrap_to_pi
 from robotica_kin.geodetic import GeodeticOrigin
-from robotica_sim.grading.metrics import _max_abs, normal_fit, path_errors, reading_error, rms
+from robotica_sim.grading.metrics import (max_abs, normal_fit, path_errors, reading_error,
+                                          rms)
 from robotica_sim.grading.series import fixes_to_enu, RunSeries, Series
 
 if TYPE_CHECKING:   # Matplotlib is imported lazily, when figures are drawn
@@ -122,7 +123,7 @@ def _rms_max(values: ArrayLike) -> tuple[float, float]:
     finite = _finite(values)
     if finite.size == 0:
         return math.nan, math.nan
-    return rms(finite), _max_abs(finite)
+    return rms(finite), max_abs(finite)
 
 
 def _stats_text(name: str, values: ArrayLike, unit: str) -> str:

@@ -32,8 +32,9 @@ from robotica_kin.angles import wrap_to_pi
 from robotica_sim.grading.series import RunSeries, Series, TOPICS
 
 __all__ = ['METRICS', 'MetricInfo', 'MetricParams', 'MetricValue', 'RunMetrics',
-           'compute_metrics', 'energy', 'normal_fit', 'overshoot', 'path_errors', 'pose_errors',
-           'reading_error', 'rms', 'settling_time', 'total_variation', 'travelled_length']
+           'compute_metrics', 'energy', 'max_abs', 'normal_fit', 'overshoot', 'path_errors',
+           'pose_errors', 'reading_error', 'rms', 'settling_time', 'total_variation',
+           'travelled_length']
 
 MetricValue = float | bool | list[float | None] | None
 """A metric's value: a number, a flag, one number per joint (None: n/a for that joint)."""
@@ -334,10 +335,8 @@ def pose_errors(truth: Series, estimate: Series) -> tuple[NDArray[np.float64], .
     """
     inside = (estimate.t >= truth.t[0]) & (estimate.t <= truth.t[-1])
     t = estimate.t[inside]
-    ex = estimate['x'][inside] - np.interp(t, truth.t, truth['x'])
-    ey = estimate['y'][inside] - np.interp(t, truth.t, truth['y'])
-    theta = np.interp(t, truth.t, np.unwrap(truth['theta']))
-    return t, ex, ey, wrap_to_pi(estimate['theta'][inside] - theta)
+    return (t, *(reading_error(t, estimate[name][inside], truth.t, truth[name],
+                               angle=name == 'theta') for name in ('x', 'y', 'theta')))
 
 
 def settling_time(t: ArrayLike, error: ArrayLike, band: float) -> float | None:
@@ -422,9 +421,9 @@ def _mobile(run: RunSeries, params: MetricParams, out: RunMetrics) -> None:
         path = PolylinePath(run.path)
         s, cross, heading = path_errors(path, truth['x'], truth['y'], truth['theta'],
                                         params.search_window)
-        values['rms_cross_track'], values['max_cross_track'] = rms(cross), _max_abs(cross)
+        values['rms_cross_track'], values['max_cross_track'] = rms(cross), max_abs(cross)
         values['rms_heading_error'], values['max_heading_error'] = (rms(heading),
-                                                                    _max_abs(heading))
+                                                                    max_abs(heading))
         values['completion'] = float(np.clip(s[-1] / path.length, 0.0, 1.0))
         end_distance = np.hypot(truth['x'] - path.points[-1, 0], truth['y'] - path.points[-1, 1])
         values['finished'] = bool(np.any(np.maximum(path.length - s, end_distance)
@@ -433,16 +432,16 @@ def _mobile(run: RunSeries, params: MetricParams, out: RunMetrics) -> None:
             distance = np.hypot(truth['x'] - np.interp(truth.t, run.path_times, run.path[:, 0]),
                                 truth['y'] - np.interp(truth.t, run.path_times, run.path[:, 1]))
             values['rms_trajectory_error'] = rms(distance)
-            values['max_trajectory_error'] = _max_abs(distance)
+            values['max_trajectory_error'] = max_abs(distance)
         else:
             out.absent['rms_trajectory_error'] = out.absent['max_trajectory_error'] = (
                 'needs a timed /path (pose stamps increasing: a trajectory), which the bag '
                 'lacks')
     elif run.tracking_error is not None:
         cross, heading = run.tracking_error['cross_track'], run.tracking_error['heading']
-        values['rms_cross_track'], values['max_cross_track'] = rms(cross), _max_abs(cross)
+        values['rms_cross_track'], values['max_cross_track'] = rms(cross), max_abs(cross)
         values['rms_heading_error'], values['max_heading_error'] = (rms(heading),
-                                                                    _max_abs(heading))
+                                                                    max_abs(heading))
         for name in _TRACKING_FALLBACK:
             notes[name] = f'from {TOPICS["tracking_error"]} (the bag lacks the truth or path)'
     cmd = run.cmd
@@ -468,7 +467,7 @@ def _estimation(run: RunSeries, params: MetricParams, out: RunMetrics) -> None:
     values['rms_position_error'], values['max_position_error'] = rms(position), float(
         np.max(position))
     values['rms_odom_heading_error'] = rms(eth)
-    values['max_odom_heading_error'] = _max_abs(eth)
+    values['max_odom_heading_error'] = max_abs(eth)
     inside = (run.odom.t >= run.truth.t[0]) & (run.odom.t <= run.truth.t[-1])
     variances = [run.odom[name][inside] for name in ('var_x', 'var_y', 'var_theta')]
     if not any(np.any(v > 0.0) for v in variances):
@@ -556,8 +555,14 @@ def _tool_errors(scenario: dict | None, q_d: NDArray[np.float64],
     return np.linalg.norm(p_d - p, axis=1)
 
 
-def _max_abs(values: NDArray[np.float64]) -> float:
-    return float(np.max(np.abs(values)))
+def max_abs(values: ArrayLike) -> float:
+    """
+    Return the largest magnitude of ``values`` (any shape, non-empty; same unit).
+
+    >>> max_abs([0.5, -2.0, 1.0])
+    2.0
+    """
+    return float(np.max(np.abs(np.asarray(values, dtype=np.float64))))
 
 
 def compute_metrics(run: RunSeries, params: MetricParams | None = None) -> RunMetrics:
