@@ -150,7 +150,7 @@ def test_every_vehicle_type_tracks_and_estimates(tmp_path, vehicle):
     assert max(errors) < 1.0
     if vehicle not in ('omni_three', 'mecanum'):
         # Measured (x, y, heading): 1.0, 0.96-1.0, 0.85-0.98 for the steered vehicles, whose
-        # heading variance is somewhat optimistic in steering transients (see the README).
+        # heading variance is somewhat optimistic in steering transients (see docs/mobile.md).
         # The holonomic bases slide sideways while their wheel speeds settle, which two
         # measuring wheels cannot see and the odometry's noise model does not cover (y was
         # within 3 sigma 79 % of one omni_three run): only their error bound is checked.
