@@ -7,16 +7,14 @@ A HEMERO ``dh`` table has one row per joint, ``[alpha_{i-1}, a_{i-1}, theta_i, d
 columns is all revolute. As in HEMERO, the joint variable (theta_i of a revolute joint, d_i of a
 prismatic one) always comes from ``q``: the table's entry for it is ignored.
 
-:class:`DHModel` is that table validated once, with joint limits and names, plus the Pinocchio
-model built from it (:mod:`robotica_kin.pinocchio_model`). Every kinematic function accepts a
-``DHModel`` or a raw table; :func:`as_dh_model` turns a raw table into a model and remembers the
-last few, so a HEMERO-style loop ``fkine(dh, q)`` does not rebuild the model on every call.
+:class:`DHModel` is that table validated once, with joint limits and names: plain, immutable
+data (the Pinocchio model built from it is :mod:`robotica_kin.pinocchio_model`'s). Every
+kinematic function accepts a ``DHModel`` or a raw table; :func:`as_dh_model` validates a raw
+table on every call, so a loop keeps the model it converted once.
 """
 
 from dataclasses import dataclass, field
-import functools
 import math
-import threading
 from typing import Any, overload
 
 import numpy as np
@@ -74,7 +72,6 @@ class DHModel:
     joint_names: tuple[str, ...]
     dyn: NDArray[np.float64] | None = None
     tool: NDArray[np.float64] = field(default_factory=lambda: _readonly(np.eye(4)))
-    _scratch: threading.local = field(default_factory=threading.local, repr=False)
 
     @property
     def n(self) -> int:
@@ -86,26 +83,6 @@ class DHModel:
         """Return the HEMERO table, shape (n, 5): ``[alpha a theta d sigma]`` per row."""
         return np.column_stack(
             [self.alpha, self.a, self.theta, self.d, self.prismatic.astype(np.float64)])
-
-    @functools.cached_property
-    def pinocchio_model(self) -> Any:
-        """Return the Pinocchio ``Model`` of this robot (built once, shared, read-only)."""
-        from robotica_kin.pinocchio_model import build_model
-        return build_model(self, self.dyn)
-
-    @functools.cached_property
-    def tool_se3(self) -> Any:
-        """Return :attr:`tool` as a Pinocchio ``SE3``."""
-        import pinocchio as pin
-        return pin.SE3(np.array(self.tool))
-
-    def pinocchio_data(self) -> Any:
-        """Return this thread's Pinocchio ``Data`` for :attr:`pinocchio_model` (scratch space)."""
-        data = getattr(self._scratch, 'data', None)
-        if data is None:
-            data = self.pinocchio_model.createData()
-            self._scratch.data = data
-        return data
 
     def check_q(self, q: ArrayLike, name: str = 'q') -> NDArray[np.float64]:
         """
@@ -214,23 +191,16 @@ def dh_model(dh: ArrayLike, *, name: str = 'robot', qlim: ArrayLike | None = Non
         joint_names=names, dyn=dyn_table, tool=_readonly(tool_pose))
 
 
-@functools.lru_cache(maxsize=32)
-def _cached_model(shape: tuple[int, ...], data: bytes, with_dyn: bool) -> DHModel:
-    table = np.frombuffer(data, dtype=np.float64).reshape(shape)
-    return dh_model(table[:, :5], dyn=table) if with_dyn else dh_model(table)
-
-
 def as_dh_model(dh: DHModel | ArrayLike) -> DHModel:
     """
-    Return ``dh`` as a :class:`DHModel`, reusing the model of an identical table seen lately.
+    Return ``dh`` as a :class:`DHModel`: a model unchanged, a raw table validated.
 
-    A :class:`DHModel` is returned unchanged; a raw table is validated by :func:`dh_model`
-    (default limits and names) and the result cached by its contents.
+    A raw table gets the defaults of :func:`dh_model` (limits and names) and is validated on
+    every call: a caller that converts the same table repeatedly keeps the model instead.
     """
     if isinstance(dh, DHModel):
         return dh
-    table = np.ascontiguousarray(dh, dtype=np.float64)
-    return _cached_model(table.shape, table.tobytes(), False)
+    return dh_model(dh)
 
 
 def as_dyn_model(dyn: DHModel | ArrayLike) -> DHModel:
@@ -238,18 +208,18 @@ def as_dyn_model(dyn: DHModel | ArrayLike) -> DHModel:
     Return ``dyn`` as a :class:`DHModel` that has dynamic parameters, or raise ValueError.
 
     A :class:`DHModel` must carry a ``dyn`` table; a raw HEMERO ``dyn`` table (n, 20) (book
-    §A.3, its first five columns the DH table) is validated and cached like
+    §A.3, its first five columns the DH table) is validated on every call, like
     :func:`as_dh_model`'s tables.
     """
     if isinstance(dyn, DHModel):
         if dyn.dyn is None:
             raise ValueError(f'robot {dyn.name!r} has no dyn table (dynamic parameters)')
         return dyn
-    table = np.ascontiguousarray(dyn, dtype=np.float64)
+    table = np.asarray(dyn, dtype=np.float64)
     if table.ndim != 2 or table.shape[1] != 20 or table.shape[0] == 0:
         raise ValueError(f'dyn must be a DHModel with dynamics or an (n, 20) HEMERO table, got '
                          f'shape {table.shape}')
-    return _cached_model(table.shape, table.tobytes(), True)
+    return dh_model(table[:, :5], dyn=table)
 
 
 @overload

@@ -17,7 +17,12 @@ integrates (5.88) with Pinocchio's ABA and an adaptive Runge-Kutta 4(5) (SciPy's
 method of MATLAB's ``ode45``).
 
 ``dyn`` is a :class:`~robotica_kin.dh.DHModel` that carries a ``dyn`` table (e.g.
-``robots.puma560()``) or a raw HEMERO table of 20 columns (book §A.3).
+``robots.puma560()``), a raw HEMERO table of 20 columns (book §A.3), or the
+:class:`~robotica_kin.pinocchio_model.PinocchioArm` of such a robot. Given a robot, a function
+builds its Pinocchio model and scratch for the call; a caller that computes often keeps an arm
+(``pinocchio_arm(robot)``) and a ``data`` of its own (``arm.model.createData()``, one per
+thread) and passes both. A gravity other than the model's is applied to a copy of the model:
+the arm's own is shared, never changed.
 """
 
 from dataclasses import dataclass
@@ -27,6 +32,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 import pinocchio as pin
 from robotica_kin.dh import as_dyn_model, DHModel
+from robotica_kin.pinocchio_model import data_for, dyn_arm, PinocchioArm
 from scipy.integrate import solve_ivp
 
 __all__ = ['DEFAULT_GRAVITY', 'FdynResult', 'JointFriction', 'coriolis', 'coriolis_matrix', 'fdyn',
@@ -36,30 +42,34 @@ DEFAULT_GRAVITY = (0.0, 0.0, -9.81)
 """Gravity acceleration in the base frame {0} [m/s²] when ``grav`` is not given."""
 
 
+def _gravity_vector(grav: ArrayLike | None) -> NDArray[np.float64]:
+    """Return ``grav`` (None: :data:`DEFAULT_GRAVITY`) as a finite 3-vector, or raise."""
+    g = np.asarray(DEFAULT_GRAVITY if grav is None else grav, dtype=np.float64)
+    if g.shape != (3,) or not np.isfinite(g).all():
+        raise ValueError(f'grav must be a finite 3-vector [m/s^2] in frame {{0}}, got {grav!r}')
+    return g
+
+
 def set_gravity(model: Any, grav: ArrayLike | None) -> None:
     """
     Set the gravity of a Pinocchio ``model`` to ``grav`` [m/s²] in frame {0}.
 
     ``None`` means :data:`DEFAULT_GRAVITY`; anything but three finite values raises ValueError.
-    Use it on a copy (``pinocchio.Model(robot.pinocchio_model)``): the robot's own model is
-    shared.
+    Use it on a model of the caller's own (``build_model(robot)``, or a copy
+    ``pinocchio.Model(arm.model)``): a :class:`~robotica_kin.pinocchio_model.PinocchioArm`'s
+    model is shared.
     """
-    g = np.asarray(DEFAULT_GRAVITY if grav is None else grav, dtype=np.float64)
-    if g.shape != (3,) or not np.isfinite(g).all():
-        raise ValueError(f'grav must be a finite 3-vector [m/s^2] in frame {{0}}, got {grav!r}')
-    model.gravity = pin.Motion(g, np.zeros(3))
+    model.gravity = pin.Motion(_gravity_vector(grav), np.zeros(3))
 
 
-def _model_and_data(robot: DHModel, grav: ArrayLike | None) -> tuple[Any, Any]:
-    """Return this thread's copy of the Pinocchio model with gravity ``grav``, and its data."""
-    scratch = robot._scratch
-    model = getattr(scratch, 'dynamics_model', None)
-    if model is None:
-        model = pin.Model(robot.pinocchio_model)
-        scratch.dynamics_model = model
-        scratch.dynamics_data = model.createData()
-    set_gravity(model, grav)
-    return model, scratch.dynamics_data
+def _model_and_data(arm: PinocchioArm, grav: ArrayLike | None, data: Any) -> tuple[Any, Any]:
+    """Return the arm's model, or a copy of it when ``grav`` differs, and the scratch ``data``."""
+    g = _gravity_vector(grav)
+    model = arm.model
+    if not np.array_equal(model.gravity.linear, g):
+        model = pin.Model(model)
+        set_gravity(model, g)
+    return model, data_for(arm, data)
 
 
 def _vectors(robot: DHModel, **arrays: ArrayLike) -> tuple[NDArray[np.float64], ...]:
@@ -129,19 +139,22 @@ def friction(dyn: DHModel | ArrayLike, qd: ArrayLike) -> NDArray[np.float64]:
     return _single(JointFriction(robot)(v), qd)
 
 
-def rne(dyn: DHModel | ArrayLike, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike,
-        grav: ArrayLike | None = None) -> NDArray[np.float64]:
+def rne(dyn: DHModel | PinocchioArm | ArrayLike, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike,
+        grav: ArrayLike | None = None, *, data: Any = None) -> NDArray[np.float64]:
     """
     Return the joint torques ``tau = M q'' + G + V + F`` (recursive Newton-Euler, §5.5.2).
 
     Parameters
     ----------
-    dyn : DHModel or array_like, shape (n, 20)
+    dyn : DHModel, PinocchioArm or array_like, shape (n, 20)
         The robot with its dynamic parameters.
     q, qd, qdd : array_like, shape (n,) or (m, n)
         Joint positions [rad | m], velocities and accelerations (one row per sample).
     grav : array_like, shape (3,), optional
         Gravity acceleration in {0} [m/s²]; default ``[0, 0, -9.81]``.
+    data : pinocchio.Data, optional
+        Scratch of the arm's model (``arm.model.createData()``), the caller's; a new one per
+        call when omitted. The other functions of this module take it too.
 
     Returns
     -------
@@ -151,7 +164,8 @@ def rne(dyn: DHModel | ArrayLike, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike,
     Raises
     ------
     ValueError
-        For a robot without dynamics, sizes that do not match, or NaN.
+        For a robot without dynamics, sizes that do not match, NaN, or a ``data`` not of the
+        arm's model.
 
     Examples
     --------
@@ -163,14 +177,15 @@ def rne(dyn: DHModel | ArrayLike, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike,
     array([98.1 ,  9.81])
 
     """
-    robot = as_dyn_model(dyn)
-    qq, vv, aa = _vectors(robot, q=q, qd=qd, qdd=qdd)
-    model, data = _model_and_data(robot, grav)
-    tau = np.array([pin.rnea(model, data, qq[k], vv[k], aa[k]) for k in range(qq.shape[0])])
-    return _single(tau + np.atleast_2d(friction(robot, vv)), q)
+    arm = dyn_arm(dyn)
+    qq, vv, aa = _vectors(arm.robot, q=q, qd=qd, qdd=qdd)
+    model, scratch = _model_and_data(arm, grav, data)
+    tau = np.array([pin.rnea(model, scratch, qq[k], vv[k], aa[k]) for k in range(qq.shape[0])])
+    return _single(tau + np.atleast_2d(friction(arm.robot, vv)), q)
 
 
-def inertia(dyn: DHModel | ArrayLike, q: ArrayLike) -> NDArray[np.float64]:
+def inertia(dyn: DHModel | PinocchioArm | ArrayLike, q: ArrayLike, *,
+            data: Any = None) -> NDArray[np.float64]:
     """
     Return the joint-space inertia matrix M(q) [kg m²] (book (5.7); Pinocchio's CRBA).
 
@@ -186,18 +201,18 @@ def inertia(dyn: DHModel | ArrayLike, q: ArrayLike) -> NDArray[np.float64]:
            [ 4.,  1.]])
 
     """
-    robot = as_dyn_model(dyn)
-    (qq,) = _vectors(robot, q=q)
-    model, data = _model_and_data(robot, None)
-    out = np.empty((qq.shape[0], robot.n, robot.n))
+    arm = dyn_arm(dyn)
+    (qq,) = _vectors(arm.robot, q=q)
+    model, scratch = _model_and_data(arm, None, data)
+    out = np.empty((qq.shape[0], arm.robot.n, arm.robot.n))
     for k in range(qq.shape[0]):
-        upper = pin.crba(model, data, qq[k])
+        upper = pin.crba(model, scratch, qq[k])
         out[k] = np.triu(upper) + np.triu(upper, 1).T
     return _single(out, q)
 
 
-def gravity(dyn: DHModel | ArrayLike, q: ArrayLike,
-            grav: ArrayLike | None = None) -> NDArray[np.float64]:
+def gravity(dyn: DHModel | PinocchioArm | ArrayLike, q: ArrayLike,
+            grav: ArrayLike | None = None, *, data: Any = None) -> NDArray[np.float64]:
     """
     Return the gravity torques G(q) [N m] (book (5.7); HEMERO ``gravity``/``gravedad``).
 
@@ -211,13 +226,14 @@ def gravity(dyn: DHModel | ArrayLike, q: ArrayLike,
     array([98.1 ,  9.81])
 
     """
-    robot = as_dyn_model(dyn)
-    (qq,) = _vectors(robot, q=q)
-    model, data = _model_and_data(robot, grav)
-    return _single(np.array([pin.computeGeneralizedGravity(model, data, qk) for qk in qq]), q)
+    arm = dyn_arm(dyn)
+    (qq,) = _vectors(arm.robot, q=q)
+    model, scratch = _model_and_data(arm, grav, data)
+    return _single(np.array([pin.computeGeneralizedGravity(model, scratch, qk) for qk in qq]), q)
 
 
-def coriolis(dyn: DHModel | ArrayLike, q: ArrayLike, qd: ArrayLike) -> NDArray[np.float64]:
+def coriolis(dyn: DHModel | PinocchioArm | ArrayLike, q: ArrayLike, qd: ArrayLike, *,
+             data: Any = None) -> NDArray[np.float64]:
     """
     Return the centrifugal and Coriolis torques V(q, q') [N m] (book (5.7), (5.82)).
 
@@ -231,26 +247,26 @@ def coriolis(dyn: DHModel | ArrayLike, q: ArrayLike, qd: ArrayLike) -> NDArray[n
     array([-0.,  3.])
 
     """
-    robot = as_dyn_model(dyn)
-    qq, vv = _vectors(robot, q=q, qd=qd)
-    model, data = _model_and_data(robot, [0.0, 0.0, 0.0])
-    return _single(np.array([pin.nonLinearEffects(model, data, qq[k], vv[k])
+    arm = dyn_arm(dyn)
+    qq, vv = _vectors(arm.robot, q=q, qd=qd)
+    model, scratch = _model_and_data(arm, [0.0, 0.0, 0.0], data)
+    return _single(np.array([pin.nonLinearEffects(model, scratch, qq[k], vv[k])
                              for k in range(qq.shape[0])]), q)
 
 
-def coriolis_matrix(dyn: DHModel | ArrayLike, q: ArrayLike,
-                    qd: ArrayLike) -> NDArray[np.float64]:
+def coriolis_matrix(dyn: DHModel | PinocchioArm | ArrayLike, q: ArrayLike, qd: ArrayLike, *,
+                    data: Any = None) -> NDArray[np.float64]:
     """
     Return V_m(q, q') with ``V = V_m q'`` and ``M' - 2 V_m`` skew-symmetric (book (5.82)-(5.83)).
 
     Pinocchio's ``computeCoriolisMatrix``; q and qd of shape (n,).
     """
-    robot = as_dyn_model(dyn)
-    qq, vv = _vectors(robot, q=q, qd=qd)
+    arm = dyn_arm(dyn)
+    qq, vv = _vectors(arm.robot, q=q, qd=qd)
     if qq.shape[0] != 1 or np.ndim(q) != 1:
         raise ValueError('coriolis_matrix takes one configuration, q of shape (n,)')
-    model, data = _model_and_data(robot, None)
-    return np.array(pin.computeCoriolisMatrix(model, data, qq[0], vv[0]))
+    model, scratch = _model_and_data(arm, None, data)
+    return np.array(pin.computeCoriolisMatrix(model, scratch, qq[0], vv[0]))
 
 
 @dataclass(frozen=True)
@@ -262,7 +278,7 @@ class FdynResult:
     qd: NDArray[np.float64]
 
 
-def fdyn(dyn: DHModel | ArrayLike, t0: float, tf: float,
+def fdyn(dyn: DHModel | PinocchioArm | ArrayLike, t0: float, tf: float,
          torquefun: Callable[[float, NDArray[np.float64], NDArray[np.float64]], ArrayLike] | None,
          q0: ArrayLike, qd0: ArrayLike, grav: ArrayLike | None = None, *,
          max_step: float = np.inf, rtol: float = 1e-8, atol: float = 1e-10,
@@ -275,7 +291,7 @@ def fdyn(dyn: DHModel | ArrayLike, t0: float, tf: float,
 
     Parameters
     ----------
-    dyn : DHModel or array_like, shape (n, 20)
+    dyn : DHModel, PinocchioArm or array_like, shape (n, 20)
         The robot with its dynamic parameters.
     t0, tf : float
         Start and end time [s], tf > t0.
@@ -300,13 +316,14 @@ def fdyn(dyn: DHModel | ArrayLike, t0: float, tf: float,
         For bad sizes, NaN, tf <= t0, or a torque function that returns a wrong size or NaN.
 
     """
-    robot = as_dyn_model(dyn)
+    arm = dyn_arm(dyn)
+    robot = arm.robot
     start, speed = _vectors(robot, q0=q0, qd0=qd0)
     if start.shape[0] != 1 or np.ndim(q0) != 1:
         raise ValueError(f'q0 and qd0 must have shape ({robot.n},)')
     if not (np.isfinite(t0) and np.isfinite(tf) and tf > t0):
         raise ValueError(f'need finite t0 < tf, got t0={t0!r}, tf={tf!r}')
-    model, data = _model_and_data(robot, grav)
+    model, data = _model_and_data(arm, grav, None)
     n = robot.n
 
     def derivative(t: float, x: NDArray[np.float64]) -> NDArray[np.float64]:

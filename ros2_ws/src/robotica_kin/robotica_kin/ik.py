@@ -43,7 +43,7 @@ from numpy.typing import ArrayLike, NDArray
 from robotica_kin.dh import as_dh_model, DHModel
 from robotica_kin.forward_kinematics import link_frames
 from robotica_kin.native_library import address, ERROR_SIZE, native_library
-from robotica_kin.pinocchio_model import TOOL_FRAME
+from robotica_kin.pinocchio_model import build_model, TOOL_FRAME
 
 __all__ = ['IKError', 'IKResult', 'ikine', 'ikine_solve']
 
@@ -124,7 +124,7 @@ class _NativeRobot:
         revolute = np.ascontiguousarray(~robot.prismatic, dtype=np.uint8)
         error = ctypes.create_string_buffer(ERROR_SIZE)
         # Pinocchio's own serialisation carries the model built by build_model to C++.
-        handle = lib.rik_robot_new(robot.pinocchio_model.saveToString().encode(),
+        handle = lib.rik_robot_new(build_model(robot).saveToString().encode(),
                                    TOOL_FRAME.encode(), address(revolute), seed_count,
                                    address(table.q), address(table.features),
                                    _ROTATION_SCALE, error, ERROR_SIZE)

@@ -9,13 +9,17 @@ one column per joint.
 
 Two routes, which agree to 1e-12 (tested):
 
-- one configuration: Pinocchio's ``computeFrameJacobian`` of the ``tool0`` frame, with
-  reference frame ``LOCAL`` (velocity of the frame origin, frame axes: exactly HEMERO's
-  ``jacobn``) or ``LOCAL_WORLD_ALIGNED`` (the same velocity in world = {0} axes: ``jacob0``).
-  It fuses ``computeJointJacobians``, ``updateFramePlacements`` and ``getFrameJacobian``
-  into one call and was the faster of the two (PUMA 560: about 1.2 us against 2.2 us);
-- a batch of m configurations: Paul's method ([H] (3.13)-(3.22), catalogue §12.2) vectorised
-  over the batch with NumPy. For ``U = {}^i_tool T = [n o a p]`` the column of joint i is
+- one configuration of a :class:`~robotica_kin.pinocchio_model.PinocchioArm` (the robot's
+  Pinocchio model, built once and kept by the caller, passed in place of the robot):
+  Pinocchio's ``computeFrameJacobian`` of the ``tool0`` frame, with reference frame ``LOCAL``
+  (velocity of the frame origin, frame axes: exactly HEMERO's ``jacobn``) or
+  ``LOCAL_WORLD_ALIGNED`` (the same velocity in world = {0} axes: ``jacob0``), in the caller's
+  ``data``. It fuses ``computeJointJacobians``, ``updateFramePlacements`` and
+  ``getFrameJacobian`` into one call and was the faster of the two (PUMA 560: about 1.2 us
+  against 2.2 us);
+- a robot (``DHModel`` or table), or a batch of m configurations: Paul's method ([H]
+  (3.13)-(3.22), catalogue §12.2) vectorised over the batch with NumPy, which needs no model
+  built. For ``U = {}^i_tool T = [n o a p]`` the column of joint i is
   ``[(z × p)·n, (z × p)·o, (z × p)·a, n_z, o_z, a_z]`` for a revolute joint and
   ``[n_z, o_z, a_z, 0, 0, 0]`` for a prismatic one; ``jacob0 = blkdiag(R, R) jacobn`` with R
   the rotation of ``fkine``.
@@ -23,33 +27,27 @@ Two routes, which agree to 1e-12 (tested):
 Timing with ``timeit`` on the PUMA 560 (a shared 2-core machine, per public call including
 the input checks): one configuration, Pinocchio 9-13 us against NumPy 190-310 us; 1000
 configurations in one (m, n) array, NumPy 1.7-2.5 ms against 10-13 ms for a loop of Pinocchio
-calls (break-even near 15-20 configurations). Hence Pinocchio for q of shape (n,), NumPy for
-(m, n).
+calls (break-even near 15-20 configurations). Hence Pinocchio for q of shape (n,) when the
+caller keeps an arm, NumPy for (m, n).
 """
 
-import functools
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 import pinocchio as pin
 
-from robotica_kin.dh import as_dh_model, DHModel
-from robotica_kin.pinocchio_model import TOOL_FRAME
+from robotica_kin.dh import DHModel
+from robotica_kin.pinocchio_model import data_for, PinocchioArm, robot_and_arm
 
 __all__ = ['jacob0', 'jacobn', 'manipulability']
 
 
-@functools.lru_cache(maxsize=64)
-def _tool_frame_id(robot: DHModel) -> int:
-    """Return the Pinocchio frame id of the tool frame of ``robot`` (looked up once)."""
-    return int(robot.pinocchio_model.getFrameId(TOOL_FRAME))
-
-
-def _frame_jacobian(robot: DHModel, q: NDArray[np.float64], reference: object
+def _frame_jacobian(arm: PinocchioArm, data: Any, q: NDArray[np.float64], reference: object
                     ) -> NDArray[np.float64]:
     """Return Pinocchio's 6×n Jacobian of the tool frame at one configuration ``q``."""
     J: NDArray[np.float64] = pin.computeFrameJacobian(
-        robot.pinocchio_model, robot.pinocchio_data(), q, _tool_frame_id(robot), reference)
+        arm.model, data_for(arm, data), q, arm.tool_frame, reference)
     return J if J.ndim == 2 else J.reshape(6, 1)    # eigenpy returns a 6×1 matrix as (6,)
 
 
@@ -89,7 +87,8 @@ def _paul_jacobians(robot: DHModel, q: NDArray[np.float64]
     return J, R_0_tool
 
 
-def jacobn(dh: DHModel | ArrayLike, q: ArrayLike) -> NDArray[np.float64]:
+def jacobn(dh: DHModel | PinocchioArm | ArrayLike, q: ArrayLike, *,
+           data: Any = None) -> NDArray[np.float64]:
     """
     Return the Jacobian in the tool frame (book §4.6, (4.75), (4.80); HEMERO ``jacobn``).
 
@@ -99,10 +98,14 @@ def jacobn(dh: DHModel | ArrayLike, q: ArrayLike) -> NDArray[np.float64]:
 
     Parameters
     ----------
-    dh : DHModel or array_like, shape (n, 4) or (n, 5)
-        The robot (Craig's modified DH, rows ``[alpha a theta d sigma]``).
+    dh : DHModel, PinocchioArm or array_like, shape (n, 4) or (n, 5)
+        The robot (Craig's modified DH, rows ``[alpha a theta d sigma]``); with a
+        ``PinocchioArm`` one configuration goes through Pinocchio.
     q : array_like, shape (n,) or (m, n)
         Joint values [rad or m]; one configuration per row.
+    data : pinocchio.Data, optional
+        Scratch of the arm's model (``arm.model.createData()``), the caller's, for the
+        Pinocchio route; a new one per call when omitted.
 
     Returns
     -------
@@ -112,7 +115,8 @@ def jacobn(dh: DHModel | ArrayLike, q: ArrayLike) -> NDArray[np.float64]:
     Raises
     ------
     ValueError
-        For a bad table, or a q of the wrong size or with NaN or inf.
+        For a bad table, a q of the wrong size or with NaN or inf, or a ``data`` without an
+        arm or not of the arm's model.
 
     Examples
     --------
@@ -128,14 +132,16 @@ def jacobn(dh: DHModel | ArrayLike, q: ArrayLike) -> NDArray[np.float64]:
            [0. , 0. , 1. ]])
 
     """
-    robot = as_dh_model(dh)
+    robot, arm = robot_and_arm(dh, data)
     qq = robot.check_q(q)
-    if qq.ndim == 1:
-        return _frame_jacobian(robot, qq, pin.LOCAL)
-    return _paul_jacobians(robot, qq)[0]
+    if arm is not None and qq.ndim == 1:
+        return _frame_jacobian(arm, data, qq, pin.LOCAL)
+    J_n = _paul_jacobians(robot, np.atleast_2d(qq))[0]
+    return J_n if qq.ndim == 2 else J_n[0]
 
 
-def jacob0(dh: DHModel | ArrayLike, q: ArrayLike) -> NDArray[np.float64]:
+def jacob0(dh: DHModel | PinocchioArm | ArrayLike, q: ArrayLike, *,
+           data: Any = None) -> NDArray[np.float64]:
     """
     Return the Jacobian in the base frame {0} (book (4.59), (4.73), (4.76); HEMERO ``jacob0``).
 
@@ -145,10 +151,14 @@ def jacob0(dh: DHModel | ArrayLike, q: ArrayLike) -> NDArray[np.float64]:
 
     Parameters
     ----------
-    dh : DHModel or array_like, shape (n, 4) or (n, 5)
-        The robot (Craig's modified DH, rows ``[alpha a theta d sigma]``).
+    dh : DHModel, PinocchioArm or array_like, shape (n, 4) or (n, 5)
+        The robot (Craig's modified DH, rows ``[alpha a theta d sigma]``); with a
+        ``PinocchioArm`` one configuration goes through Pinocchio.
     q : array_like, shape (n,) or (m, n)
         Joint values [rad or m]; one configuration per row.
+    data : pinocchio.Data, optional
+        Scratch of the arm's model (``arm.model.createData()``), the caller's, for the
+        Pinocchio route; a new one per call when omitted.
 
     Returns
     -------
@@ -158,7 +168,8 @@ def jacob0(dh: DHModel | ArrayLike, q: ArrayLike) -> NDArray[np.float64]:
     Raises
     ------
     ValueError
-        For a bad table, or a q of the wrong size or with NaN or inf.
+        For a bad table, a q of the wrong size or with NaN or inf, or a ``data`` without an
+        arm or not of the arm's model.
 
     Examples
     --------
@@ -173,20 +184,20 @@ def jacob0(dh: DHModel | ArrayLike, q: ArrayLike) -> NDArray[np.float64]:
            [ 1.,  1.,  1.]])
 
     """
-    robot = as_dh_model(dh)
+    robot, arm = robot_and_arm(dh, data)
     qq = robot.check_q(q)
-    if qq.ndim == 1:
-        return _frame_jacobian(robot, qq, pin.LOCAL_WORLD_ALIGNED)
-    J_n, R = _paul_jacobians(robot, qq)
+    if arm is not None and qq.ndim == 1:
+        return _frame_jacobian(arm, data, qq, pin.LOCAL_WORLD_ALIGNED)
+    J_n, R = _paul_jacobians(robot, np.atleast_2d(qq))
     J_0 = np.empty_like(J_n)
     for k in range(3):    # blkdiag(R, R) J_n, as broadcast products (faster than stacked @)
         J_0[:, k] = R[:, k, 0:1] * J_n[:, 0] + R[:, k, 1:2] * J_n[:, 1] + R[:, k, 2:3] * J_n[:, 2]
         J_0[:, k + 3] = (R[:, k, 0:1] * J_n[:, 3] + R[:, k, 1:2] * J_n[:, 4]
                          + R[:, k, 2:3] * J_n[:, 5])
-    return J_0
+    return J_0 if qq.ndim == 2 else J_0[0]
 
 
-def manipulability(dh: DHModel | ArrayLike, q: ArrayLike,
+def manipulability(dh: DHModel | PinocchioArm | ArrayLike, q: ArrayLike,
                    mask: ArrayLike | None = None) -> float | NDArray[np.float64]:
     """
     Return Yoshikawa's manipulability ``w = sqrt(det(J J^T))`` of ``jacob0`` (book §4.6).
@@ -200,8 +211,8 @@ def manipulability(dh: DHModel | ArrayLike, q: ArrayLike,
 
     Parameters
     ----------
-    dh : DHModel or array_like, shape (n, 4) or (n, 5)
-        The robot.
+    dh : DHModel, PinocchioArm or array_like, shape (n, 4) or (n, 5)
+        The robot (see :func:`jacob0`).
     q : array_like, shape (n,) or (m, n)
         Joint values [rad or m].
     mask : array_like of 0/1, shape (6,), optional
@@ -229,7 +240,7 @@ def manipulability(dh: DHModel | ArrayLike, q: ArrayLike,
     12.0
 
     """
-    robot = as_dh_model(dh)
+    robot, arm = robot_and_arm(dh, None)
     rows = np.ones(6, dtype=bool) if mask is None else np.asarray(mask)
     if rows.shape != (6,) or not np.all((rows == 0) | (rows == 1)) or not np.any(rows):
         raise ValueError(f'mask must be six 0/1 values with at least one 1, got {mask!r}')
@@ -238,6 +249,6 @@ def manipulability(dh: DHModel | ArrayLike, q: ArrayLike,
         raise ValueError(
             f'mask selects {np.count_nonzero(rows)} Cartesian rows but {robot.name!r} has '
             f'{robot.n} joints, so J J^T is always singular; select at most {robot.n} rows')
-    J = jacob0(robot, q)[..., rows, :]
+    J = jacob0(robot if arm is None else arm, q)[..., rows, :]
     w = np.linalg.svd(J, compute_uv=False).prod(axis=-1)
     return float(w) if w.ndim == 0 else w

@@ -19,7 +19,8 @@ Conventions (all vectors in the manipulator's base frame {0}, SI units):
 
 With these conventions the torques do not depend on v (only ω, α, a and g enter Craig's
 recursion); v is taken for completeness and to build Pinocchio's state. The computation is
-Pinocchio's RNEA on a copy of the robot's model below a free-flyer joint, whose velocity and
+Pinocchio's RNEA on the robot's model appended below a free-flyer joint (a model built for
+the call, with its scratch; the robot's own is not changed), whose velocity and
 acceleration are the base motion (Pinocchio's free-flyer coordinates are the spatial velocity
 in the body frame and its time derivative: linear part ``a - ω × v``), at the identity pose,
 so that the inertial frame coincides with {0} at that instant. The joint torques are the last
@@ -34,8 +35,9 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 import pinocchio as pin
-from robotica_kin.dh import as_dyn_model, DHModel
+from robotica_kin.dh import DHModel
 from robotica_kin.dynamics import _single, _vectors, friction, set_gravity
+from robotica_kin.pinocchio_model import dyn_arm, PinocchioArm
 
 __all__ = ['base_motion_from_planar', 'rne_moving_base']
 
@@ -43,26 +45,20 @@ _BASE_JOINT = 'moving_base'
 """Name of the free-flyer joint that carries the manipulator in the moving-base model."""
 
 
-def _free_flyer_model(robot: DHModel) -> tuple[Any, Any]:
-    """Return this thread's free-flyer copy of the robot's Pinocchio model, and its data."""
-    scratch = robot._scratch
-    model = getattr(scratch, 'moving_base_model', None)
-    if model is None:
-        arm = robot.pinocchio_model
-        root = pin.Model()
-        root.name = f'{arm.name}_on_moving_base'
-        joint = root.addJoint(0, pin.JointModelFreeFlyer(), pin.SE3.Identity(), _BASE_JOINT)
-        frame = root.addFrame(pin.Frame(f'{_BASE_JOINT}_frame', joint, 0, pin.SE3.Identity(),
-                                        pin.FrameType.OP_FRAME))
-        model = pin.appendModel(root, arm, frame, pin.SE3.Identity())
-        # appendModel does not carry the motor parameters over: copy them to the arm's joints.
-        for name in ('armature', 'rotorInertia', 'rotorGearRatio'):
-            values = np.array(getattr(model, name))
-            values[6:] = np.array(getattr(arm, name))
-            setattr(model, name, values)
-        scratch.moving_base_model = model
-        scratch.moving_base_data = model.createData()
-    return model, scratch.moving_base_data
+def _free_flyer_model(arm: PinocchioArm) -> Any:
+    """Return a new Pinocchio model: the arm's model below a free-flyer joint."""
+    root = pin.Model()
+    root.name = f'{arm.model.name}_on_moving_base'
+    joint = root.addJoint(0, pin.JointModelFreeFlyer(), pin.SE3.Identity(), _BASE_JOINT)
+    frame = root.addFrame(pin.Frame(f'{_BASE_JOINT}_frame', joint, 0, pin.SE3.Identity(),
+                                    pin.FrameType.OP_FRAME))
+    model = pin.appendModel(root, arm.model, frame, pin.SE3.Identity())
+    # appendModel does not carry the motor parameters over: copy them to the arm's joints.
+    for name in ('armature', 'rotorInertia', 'rotorGearRatio'):
+        values = np.array(getattr(model, name))
+        values[6:] = np.array(getattr(arm.model, name))
+        setattr(model, name, values)
+    return model
 
 
 def _base_array(value: ArrayLike, name: str, rows: int, single: bool) -> NDArray[np.float64]:
@@ -76,8 +72,8 @@ def _base_array(value: ArrayLike, name: str, rows: int, single: bool) -> NDArray
     return np.broadcast_to(arr, (rows, 6))
 
 
-def rne_moving_base(dyn: DHModel | ArrayLike, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike,
-                    base_velocity: ArrayLike, base_acceleration: ArrayLike,
+def rne_moving_base(dyn: DHModel | PinocchioArm | ArrayLike, q: ArrayLike, qd: ArrayLike,
+                    qdd: ArrayLike, base_velocity: ArrayLike, base_acceleration: ArrayLike,
                     grav: ArrayLike | None = None) -> NDArray[np.float64]:
     """
     Return the joint torques of a manipulator whose base frame {0} moves (HEMERO §A.3).
@@ -88,7 +84,7 @@ def rne_moving_base(dyn: DHModel | ArrayLike, q: ArrayLike, qd: ArrayLike, qdd: 
 
     Parameters
     ----------
-    dyn : DHModel or array_like, shape (n, 20)
+    dyn : DHModel, PinocchioArm or array_like, shape (n, 20)
         The robot with its dynamic parameters.
     q, qd, qdd : array_like, shape (n,) or (m, n)
         Joint positions [rad | m], velocities and accelerations relative to the base.
@@ -124,13 +120,15 @@ def rne_moving_base(dyn: DHModel | ArrayLike, q: ArrayLike, qd: ArrayLike, qdd: 
     array([34.,  4.])
 
     """
-    robot = as_dyn_model(dyn)
+    arm = dyn_arm(dyn)
+    robot = arm.robot
     qq, vv, aa = _vectors(robot, q=q, qd=qd, qdd=qdd)
     rows, single = qq.shape[0], np.ndim(q) == 1
     base_v = _base_array(base_velocity, 'base_velocity', rows, single)
     base_a = _base_array(base_acceleration, 'base_acceleration', rows, single)
-    model, data = _free_flyer_model(robot)
+    model = _free_flyer_model(arm)
     set_gravity(model, grav)
+    data = model.createData()
     pose = np.array([0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0])   # free flyer at identity: world = {0}
     tau = np.empty((rows, robot.n))
     for k in range(rows):

@@ -9,20 +9,156 @@ joint i is therefore Craig's link frame {i}, and the product of placements and j
 exactly the chain of link transforms (4.6). Operational frames ``link_0`` … ``link_n`` name
 those frames, and ``tool0`` is the robot's tool frame on link n (``DHModel.tool``, the identity
 unless given), the frame of ``fkine`` and of the Jacobians.
+
+Pinocchio's split, kept here: the model is built once and then only read, so one
+:class:`PinocchioArm` may serve every thread; the scratch of the algorithms, a
+``pinocchio.Data`` (``arm.model.createData()``), belongs to the caller, one per node, thread or
+object. Nothing is cached in this module: a caller that computes often keeps its arm and its
+data, and passes them to the functions that take them (``fkine(arm, q, data=data)``). Given a
+robot instead, ``fkine`` and the Jacobians take their NumPy route, which needs no model, and the
+dynamics build the model and its scratch for the call. A caller that changes a model (its
+gravity, a payload) builds its own with :func:`build_model`.
 """
 
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
 import pinocchio as pin
 
-from robotica_kin.dh import as_dh_model, dh_model, DHModel
+from robotica_kin.dh import as_dh_model, as_dyn_model, dh_model, DHModel
 
-__all__ = ['TOOL_FRAME', 'build_model']
+__all__ = ['PinocchioArm', 'TOOL_FRAME', 'build_model', 'data_for', 'dyn_arm',
+           'pinocchio_arm', 'robot_and_arm']
 
 TOOL_FRAME = 'tool0'
 """Name of the tool frame (``DHModel.tool`` on link n), the frame of fkine and the Jacobians."""
+
+
+@dataclass(frozen=True, eq=False)
+class PinocchioArm:
+    """
+    A robot with its Pinocchio model, built once by :func:`pinocchio_arm`; read-only, shareable.
+
+    The algorithms of :mod:`robotica_kin.forward_kinematics`, :mod:`robotica_kin.jacobian` and
+    :mod:`robotica_kin.dynamics` take it in place of the :class:`~robotica_kin.dh.DHModel` to
+    skip the build on every call, and a ``data`` of its model to skip the allocation. Never
+    change :attr:`model` (e.g. its gravity): it is shared; copy it (``pinocchio.Model``).
+
+    Attributes
+    ----------
+    robot : DHModel
+        The robot the model was built from.
+    model : pinocchio.Model
+        :func:`build_model` of ``robot`` (with its dynamics when it has a ``dyn`` table); the
+        gravity is Pinocchio's default ``[0, 0, -9.81]`` m/s².
+    tool : pinocchio.SE3
+        ``robot.tool``, ``T_n_tool``: the tool frame in the last link frame {n}.
+    tool_frame : int
+        Id of the frame :data:`TOOL_FRAME` in :attr:`model`.
+
+    """
+
+    robot: DHModel
+    model: Any
+    tool: Any
+    tool_frame: int
+
+
+def pinocchio_arm(dh: DHModel | ArrayLike) -> PinocchioArm:
+    """
+    Build the Pinocchio model of a robot and return it with the robot and its tool frame.
+
+    Parameters
+    ----------
+    dh : DHModel or array_like, shape (n, 4) or (n, 5)
+        The robot (book Table 4.2 rows ``[alpha a theta d sigma]``); a raw table gets the
+        defaults of :func:`~robotica_kin.dh.dh_model` (no dynamics).
+
+    Returns
+    -------
+    PinocchioArm
+
+    Raises
+    ------
+    ValueError
+        For an invalid table (see :func:`robotica_kin.dh.dh_model`).
+
+    Examples
+    --------
+    >>> from robotica_kin.forward_kinematics import link_frames
+    >>> from robotica_kin.robots import puma560
+    >>> arm = pinocchio_arm(puma560())
+    >>> data = arm.model.createData()          # the caller's scratch, one per thread
+    >>> q = [0.1, -0.5, 0.6, 0.2, 0.4, -0.3]
+    >>> pin.forwardKinematics(arm.model, data, np.array(q))
+    >>> T_0_6 = link_frames(arm.robot, q)[-1]     # Craig's product (4.6), in NumPy
+    >>> bool(np.allclose(data.oMi[6].homogeneous, T_0_6, atol=1e-12))
+    True
+
+    """
+    robot = as_dh_model(dh)
+    model = build_model(robot)
+    return PinocchioArm(robot=robot, model=model, tool=pin.SE3(np.array(robot.tool)),
+                        tool_frame=int(model.getFrameId(TOOL_FRAME)))
+
+
+def data_for(arm: PinocchioArm, data: Any) -> Any:
+    """
+    Return ``data``, or a new ``Data`` of ``arm.model`` when it is None.
+
+    Raises
+    ------
+    ValueError
+        When ``data`` is not a Pinocchio ``Data`` of the arm's model (sizes that differ would
+        let Pinocchio write out of bounds).
+
+    """
+    if data is None:
+        return arm.model.createData()
+    if not isinstance(data, pin.Data) or not arm.model.check(data):
+        raise ValueError(f'data must be a pinocchio.Data of the model of {arm.robot.name!r} '
+                         f'(arm.model.createData()), got {type(data).__name__}')
+    return data
+
+
+def robot_and_arm(dh: DHModel | PinocchioArm | ArrayLike,
+                  data: Any) -> tuple[DHModel, PinocchioArm | None]:
+    """
+    Return the robot of ``dh``, and ``dh`` itself when it is a :class:`PinocchioArm`.
+
+    For the functions with a NumPy route and a Pinocchio route (``fkine``, the Jacobians):
+    only an arm has a model for ``data`` to be the scratch of.
+
+    Raises
+    ------
+    ValueError
+        For a bad table, or a ``data`` that comes without an arm.
+
+    """
+    if isinstance(dh, PinocchioArm):
+        return dh.robot, dh
+    if data is not None:
+        raise ValueError("data is the scratch of a PinocchioArm's model: pass the arm, not the "
+                         'robot, with it')
+    return as_dh_model(dh), None
+
+
+def dyn_arm(dyn: DHModel | PinocchioArm | ArrayLike) -> PinocchioArm:
+    """
+    Return ``dyn`` when it is the arm of a robot with dynamics, else the arm built from it.
+
+    Raises
+    ------
+    ValueError
+        For a robot or an arm without a ``dyn`` table, or a bad table.
+
+    """
+    if isinstance(dyn, PinocchioArm):
+        as_dyn_model(dyn.robot)
+        return dyn
+    return pinocchio_arm(as_dyn_model(dyn))
 
 
 def _link_inertia(row: np.ndarray) -> Any:

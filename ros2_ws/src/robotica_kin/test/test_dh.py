@@ -1,10 +1,11 @@
 """Tests of robotica_kin.dh: HEMERO DH tables and Craig's link transform (catalog §2.2, §12.2)."""
+import dataclasses
 import math
 
 import numpy as np
 import pytest
 
-from robotica_kin.dh import as_dh_model, dh_model, linktrans
+from robotica_kin.dh import as_dh_model, as_dyn_model, dh_model, DHModel, linktrans
 
 
 def _rot_x(alpha):
@@ -64,11 +65,35 @@ def test_dh_model_reads_sigma_and_defaults():
         robot.alpha[0] = 1.0     # read-only arrays
 
 
-def test_as_dh_model_reuses_the_model_of_an_identical_table():
+def test_as_dh_model_returns_a_model_unchanged_and_validates_a_table():
     table = [[0, 0, 0, 0], [0, 1.5, 0, 0]]
-    assert as_dh_model(table) is as_dh_model(np.array(table, dtype=float))
-    robot = dh_model(table)
+    robot = as_dh_model(table)
+    np.testing.assert_array_equal(robot.table, np.column_stack([table, [0, 0]]))
     assert as_dh_model(robot) is robot
+    with pytest.raises(ValueError, match='shape'):
+        as_dh_model([[0, 0, 0]])
+
+
+def test_as_dyn_model_needs_the_dynamic_table():
+    dyn = np.zeros((2, 20))
+    dyn[1, 1] = 1.5
+    dyn[:, 5] = 1.0
+    robot = as_dyn_model(dyn)
+    np.testing.assert_array_equal(robot.dyn, dyn)
+    assert as_dyn_model(robot) is robot
+    with pytest.raises(ValueError, match='no dyn table'):
+        as_dyn_model(dh_model(dyn[:, :5]))
+    with pytest.raises(ValueError, match=r'\(n, 20\)'):
+        as_dyn_model(dyn[:, :5])
+
+
+def test_dh_model_is_plain_data():
+    """The model holds its table and nothing else: no Pinocchio model, no scratch (issue 15)."""
+    assert [f.name for f in dataclasses.fields(DHModel)] == [
+        'alpha', 'a', 'theta', 'd', 'prismatic', 'qlim', 'name', 'joint_names', 'dyn', 'tool']
+    robot = dh_model([[0, 0, 0, 0]])
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        robot.name = 'other'
 
 
 @pytest.mark.parametrize(('kwargs', 'match'), [

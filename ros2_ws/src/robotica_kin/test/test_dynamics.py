@@ -11,8 +11,10 @@ import pinocchio as pin
 import pytest
 
 from reference_models import closed_form_2r
+from robotica_kin.dh import dh_model
 from robotica_kin.dynamics import (coriolis, coriolis_matrix, fdyn, friction, gravity, inertia,
                                    rne)
+from robotica_kin.pinocchio_model import pinocchio_arm
 from robotica_kin.robots import puma560, two_link_arm
 
 G = 9.81
@@ -104,6 +106,30 @@ def test_ejemplo_5_4_c_viscous_friction_brings_it_to_rest_hanging():
     np.testing.assert_allclose(result.qd[-1], 0.0, atol=1e-2)
 
 
+def test_an_arm_and_the_callers_data_give_the_robots_results():
+    """The kept arm with one scratch Data reused by every call, against fresh ones per call."""
+    robot = puma560()
+    arm = pinocchio_arm(robot)
+    data = arm.model.createData()
+    rng = np.random.default_rng(3)
+    q, qd, qdd = rng.normal(size=(3, 6))
+    grav = [0.0, -9.81, 0.0]
+    for _ in range(2):     # the second pass starts from the scratch the first one left
+        np.testing.assert_array_equal(rne(arm, q, qd, qdd, grav, data=data),
+                                      rne(robot, q, qd, qdd, grav))
+        np.testing.assert_array_equal(inertia(arm, q, data=data), inertia(robot, q))
+        np.testing.assert_array_equal(gravity(arm, q, data=data), gravity(robot, q))
+        np.testing.assert_array_equal(coriolis(arm, q, qd, data=data), coriolis(robot, q, qd))
+        np.testing.assert_array_equal(coriolis_matrix(arm, q, qd, data=data),
+                                      coriolis_matrix(robot, q, qd))
+    by_arm = fdyn(arm, 0.0, 0.05, None, q, qd)
+    np.testing.assert_array_equal(by_arm.q, fdyn(robot, 0.0, 0.05, None, q, qd).q)
+    _, other = two_link_arm(2.0, 1.0, 3.0, 1.0)
+    with pytest.raises(ValueError, match='Data of the model'):
+        rne(arm, q, qd, qdd, data=pinocchio_arm(dh_model(other[:, :5], dyn=other))
+            .model.createData())
+
+
 @pytest.mark.parametrize('seed', range(5))
 def test_puma560_identities(seed):
     robot = puma560()
@@ -117,7 +143,7 @@ def test_puma560_identities(seed):
     assert M[0, 0] > 291e-6 * 62.6111**2
     tau = rne(robot, q, qd, qdd)
     # ABA (an independent Pinocchio algorithm) inverts RNE: aba(rnea(a)) = a.
-    model = robot.pinocchio_model
+    model = pinocchio_arm(robot).model
     np.testing.assert_allclose(pin.aba(model, model.createData(), q, qd, tau), qdd, atol=1e-9)
     np.testing.assert_allclose(tau, M @ qdd + coriolis(robot, q, qd) + gravity(robot, q),
                                atol=1e-9)

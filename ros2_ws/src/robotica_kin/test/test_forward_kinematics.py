@@ -13,6 +13,7 @@ import pytest
 
 from robotica_kin.dh import dh_model
 from robotica_kin.forward_kinematics import fkine, link_frames
+from robotica_kin.pinocchio_model import pinocchio_arm
 from robotica_kin.robots import cylindrical_rpr, planar_rr, planar_rrr, puma560
 
 ANGLE = st.floats(-math.pi, math.pi)
@@ -74,11 +75,25 @@ def test_pinocchio_and_numpy_routes_agree_on_random_tables(seed):
     tool[:3, 3] = rng.normal(size=3)
     robot = dh_model(table, tool=tool)
     q = rng.uniform(-3, 3, (50, n))
+    arm = pinocchio_arm(robot)
+    data = arm.model.createData()
     batch = fkine(robot, q)                       # vectorised NumPy route
-    single = np.array([fkine(robot, qi) for qi in q])    # Pinocchio route
+    single = np.array([fkine(arm, qi, data=data) for qi in q])    # Pinocchio route
     expected = np.array([_product(robot, qi) for qi in q])
     np.testing.assert_allclose(single, batch, atol=1e-12)
     np.testing.assert_allclose(single, expected, atol=1e-12)
+    np.testing.assert_allclose(fkine(robot, q[0]), expected[0], atol=1e-12)   # NumPy, one q
+    np.testing.assert_allclose(fkine(arm, q), batch, atol=0)     # an arm's batch: NumPy too
+    np.testing.assert_allclose(fkine(arm, q[0]), expected[0], atol=1e-12)   # its own data
+
+
+def test_data_needs_the_arm_of_its_model():
+    robot = puma560()
+    arm = pinocchio_arm(robot)
+    with pytest.raises(ValueError, match='pass the arm'):
+        fkine(robot, np.zeros(6), data=arm.model.createData())
+    with pytest.raises(ValueError, match='Data of the model'):
+        fkine(arm, np.zeros(6), data=pinocchio_arm(planar_rr(1.0, 1.0)).model.createData())
 
 
 def test_shapes_of_batches_and_frames():

@@ -16,6 +16,7 @@ import pytest
 from robotica_kin.dh import dh_model
 from robotica_kin.forward_kinematics import fkine
 from robotica_kin.jacobian import _paul_jacobians, jacob0, jacobn, manipulability
+from robotica_kin.pinocchio_model import pinocchio_arm
 from robotica_kin.robots import cylindrical_rpr, planar_rr, planar_rrr, puma560
 from robotica_kin.transforms import rotvec, transl
 from robotica_kin.velocity_propagation import velprop
@@ -202,25 +203,31 @@ def test_random_robots_match_finite_differences():
 @given(st.integers(min_value=0, max_value=2**32 - 1))
 @settings(max_examples=30, deadline=None)
 def test_pinocchio_and_paul_routes_agree(seed):
-    """The single route (Pinocchio LOCAL / LOCAL_WORLD_ALIGNED) equals Paul's method to 1e-12."""
+    """An arm's route (Pinocchio LOCAL / LOCAL_WORLD_ALIGNED) equals Paul's method to 1e-12."""
     rng = np.random.default_rng(seed)
     robot = random_robot(rng, tool=bool(rng.integers(0, 2)))
+    arm = pinocchio_arm(robot)
+    data = arm.model.createData()
     q = rng.uniform(-math.pi, math.pi, robot.n)
     J_n, R = _paul_jacobians(robot, q[np.newaxis])
+    np.testing.assert_allclose(jacobn(arm, q, data=data), J_n[0], rtol=0, atol=1e-12)
+    np.testing.assert_allclose(jacob0(arm, q, data=data), blkdiag(R[0]) @ J_n[0], rtol=0,
+                               atol=1e-12)
     np.testing.assert_allclose(jacobn(robot, q), J_n[0], rtol=0, atol=1e-12)
-    np.testing.assert_allclose(jacob0(robot, q), blkdiag(R[0]) @ J_n[0], rtol=0, atol=1e-12)
     np.testing.assert_allclose(R[0], fkine(robot, q)[:3, :3], rtol=0, atol=1e-12)
 
 
 @pytest.mark.parametrize('robot', ROBOTS, ids=lambda r: r.name)
 def test_batch_equals_loop(robot):
-    """(m, n) in gives (m, 6, n) out, equal to m single calls (the two routes)."""
+    """(m, n) in gives (m, 6, n) out, equal to m single calls of an arm (the two routes)."""
     Q = np.random.default_rng(13).uniform(-math.pi, math.pi, (7, robot.n))
+    arm = pinocchio_arm(robot)
     for fn in (jacobn, jacob0):
         batch = fn(robot, Q)
         assert batch.shape == (7, 6, robot.n)
-        np.testing.assert_allclose(batch, np.stack([fn(robot, q) for q in Q]), rtol=0,
+        np.testing.assert_allclose(batch, np.stack([fn(arm, q) for q in Q]), rtol=0,
                                    atol=1e-12)
+        np.testing.assert_allclose(fn(arm, Q), batch, rtol=0, atol=0)
         assert fn(robot, Q[:1]).shape == (1, 6, robot.n)
         assert fn(robot, Q[0]).shape == (6, robot.n)
 
@@ -256,6 +263,7 @@ def test_manipulability():
     wrist_flat = Q[0].copy()
     wrist_flat[4] = 0.0      # θ5 = 0: axes 4 and 6 aligned (book §4.6)
     assert manipulability(robot, wrist_flat) < 1e-12 < manipulability(robot, Q[0])
+    assert manipulability(pinocchio_arm(robot), Q[0]) == pytest.approx(w[0], rel=1e-9)
 
 
 @pytest.mark.parametrize('call', [

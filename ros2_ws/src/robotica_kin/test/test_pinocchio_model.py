@@ -2,7 +2,8 @@
 Tests of robotica_kin.pinocchio_model: Pinocchio models from modified-DH tables (catalog §12.4).
 
 The joint frames of the model must be Craig's link frames (compared with a NumPy product of
-(4.4) matrices), and the ``dyn`` columns must land in the right inertias.
+(4.4) matrices), and the ``dyn`` columns must land in the right inertias. The arm keeps the
+model/data split: its model is built once and read, the scratch ``Data`` is the caller's.
 """
 
 import numpy as np
@@ -11,8 +12,10 @@ import pytest
 
 from reference_models import link_transform
 from robotica_kin.dh import dh_model
-from robotica_kin.pinocchio_model import build_model
-from robotica_kin.robots import puma560
+from robotica_kin.dynamics import rne
+from robotica_kin.pinocchio_model import (build_model, data_for, dyn_arm, pinocchio_arm,
+                                          robot_and_arm, TOOL_FRAME)
+from robotica_kin.robots import planar_rr, puma560, two_link_arm
 
 
 @pytest.mark.parametrize('seed', range(4))
@@ -36,7 +39,7 @@ def test_joint_frames_are_craig_link_frames(seed):
 
 
 def test_puma560_dynamic_parameters_of_fig_a7():
-    model = puma560().pinocchio_model
+    model = pinocchio_arm(puma560()).model
     link2 = model.inertias[2]
     assert link2.mass == pytest.approx(17.4)
     np.testing.assert_allclose(link2.lever, [0.068, 0.006, -0.016])
@@ -57,3 +60,61 @@ def test_massless_model_without_dyn_and_tool_frame():
     assert model.existFrame('tool0')
     np.testing.assert_allclose(model.frames[model.getFrameId('tool0')].placement.homogeneous,
                                tool)
+
+
+def test_arm_holds_the_robot_its_model_and_the_tool_frame():
+    tool = np.eye(4)
+    tool[:3, 3] = [0.1, -0.2, 0.3]
+    robot = dh_model([[0, 0, 0, 0], [0, 1, 0, 0]], tool=tool)
+    arm = pinocchio_arm(robot)
+    assert arm.robot is robot
+    np.testing.assert_array_equal(arm.tool.homogeneous, tool)
+    assert arm.model.frames[arm.tool_frame].name == TOOL_FRAME
+    q = np.array([0.4, -0.7])
+    data = arm.model.createData()
+    pin.forwardKinematics(arm.model, data, q)
+    expected = link_transform(0, 0, q[0], 0) @ link_transform(0, 1, q[1], 0) @ tool
+    np.testing.assert_allclose((data.oMi[2] * arm.tool).homogeneous, expected, atol=1e-12)
+    # A raw table gets dh_model's defaults.
+    assert pinocchio_arm([[0, 0, 0, 0]]).robot.joint_names == ('joint_1',)
+
+
+def test_data_for_makes_scratch_or_checks_the_callers():
+    arm = pinocchio_arm(puma560())
+    data = arm.model.createData()
+    assert data_for(arm, data) is data
+    assert data_for(arm, None) is not data_for(arm, None)      # one per call when not given
+    with pytest.raises(ValueError, match='Data of the model'):
+        data_for(arm, pinocchio_arm(planar_rr(1.0, 1.0)).model.createData())
+    with pytest.raises(ValueError, match='Data of the model'):
+        data_for(arm, object())
+
+
+def test_robot_and_arm_takes_data_only_with_an_arm():
+    robot = planar_rr(1.0, 2.0)
+    arm = pinocchio_arm(robot)
+    assert robot_and_arm(robot, None) == (robot, None)
+    assert robot_and_arm(arm, arm.model.createData()) == (robot, arm)
+    with pytest.raises(ValueError, match='pass the arm'):
+        robot_and_arm(robot, arm.model.createData())
+
+
+def test_dyn_arm_needs_dynamics():
+    _, dyn = two_link_arm(2.0, 1.0, 3.0, 1.0)
+    arm = dyn_arm(dyn)
+    assert dyn_arm(arm) is arm
+    np.testing.assert_array_equal(arm.robot.dyn, dyn)
+    with pytest.raises(ValueError, match='no dyn table'):
+        dyn_arm(pinocchio_arm(planar_rr(1.0, 1.0)))
+
+
+def test_arm_model_is_shared_and_never_changed():
+    """Another gravity goes to a copy; the arm's model keeps Pinocchio's default one."""
+    arm = pinocchio_arm(puma560())
+    data = arm.model.createData()
+    q = np.array([0.1, -0.5, 0.6, 0.2, 0.4, -0.3])
+    zero = np.zeros(6)
+    tau_moon = rne(arm, q, zero, zero, grav=[0.0, 0.0, -1.62], data=data)
+    np.testing.assert_array_equal(arm.model.gravity.linear, [0.0, 0.0, -9.81])
+    np.testing.assert_allclose(rne(arm, q, zero, zero, data=data) * 1.62 / 9.81, tau_moon,
+                               atol=1e-9)

@@ -19,6 +19,7 @@ from numpy.typing import ArrayLike, NDArray
 import pinocchio as pin
 from robotica_kin.dh import as_dyn_model, DHModel
 from robotica_kin.dynamics import JointFriction, set_gravity
+from robotica_kin.pinocchio_model import build_model
 
 from .law import gain_field, JointControlLaw, JointReference, JointState, per_joint
 
@@ -85,7 +86,9 @@ class ComputedTorque(JointControlLaw):
             raise ValueError(f'gains must be ComputedTorqueGains, got {type(gains).__name__}')
         robot = as_dyn_model(model)     # checks the model: dynamics present, (n, 20)
         n = robot.n
-        self._pin_model = pin.Model(robot.pinocchio_model)
+        # The law's own model (its gravity is set here) and scratch, made once: update() runs
+        # at the control rate and allocates neither.
+        self._pin_model = build_model(robot)
         set_gravity(self._pin_model, grav)
         self._pin_data = self._pin_model.createData()
         self._friction = JointFriction(robot)

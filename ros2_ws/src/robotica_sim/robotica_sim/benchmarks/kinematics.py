@@ -4,7 +4,9 @@ Speed and success of the manipulator kinematics, against a plain NumPy baseline 
 For each robot (PUMA 560 and the planar 3R of Ej. 4.1 by default) and m random configurations
 within the joint limits (a seeded generator), it times:
 
-- ``fkine`` and ``jacob0`` per call and batched (one call on the (m, n) array);
+- ``fkine`` and ``jacob0`` per call, on the robot's Pinocchio arm and one scratch ``data`` kept
+  across the calls (as a caller that computes often keeps them), and batched (one call on the
+  (m, n) array);
 - ``ikine`` on the poses ``fkine(q)`` of those configurations, per call, with its success rate;
 - the baseline: the product of Craig's link matrices (4.5) built with NumPy for each call, the
   geometric Jacobian from those frames, and HEMERO's own ``ikine`` iteration
@@ -25,6 +27,7 @@ from robotica_kin.dh import DHModel
 from robotica_kin.forward_kinematics import fkine
 from robotica_kin.ik import ikine_solve
 from robotica_kin.jacobian import jacob0
+from robotica_kin.pinocchio_model import pinocchio_arm
 from robotica_kin.robots import planar_rrr, puma560
 
 __all__ = ['BenchmarkRow', 'baseline_fkine', 'baseline_ikine', 'baseline_jacob0',
@@ -157,10 +160,13 @@ def run_kinematics_benchmark(count: int = 1000, baseline_ik_count: int = 100, se
         rng = np.random.default_rng(seed)
         q = rng.uniform(robot.qlim[:, 0], robot.qlim[:, 1], size=(count, robot.n))
         goals = fkine(robot, q)
-        fkine(robot, q[0])
-        jacob0(robot, q[0])
+        arm = pinocchio_arm(robot)
+        data = arm.model.createData()
+        fkine(arm, q[0], data=data)
+        jacob0(arm, q[0], data=data)
         say(f'{robot.name}: fkine')
-        rows.append(_row(robot.name, 'fkine', 'robotica', _per_call(lambda x: fkine(robot, x), q)))
+        rows.append(_row(robot.name, 'fkine', 'robotica',
+                         _per_call(lambda x: fkine(arm, x, data=data), q)))
         rows.append(_row(robot.name, 'fkine', 'numpy baseline',
                          _per_call(lambda x: baseline_fkine(robot, x), q)))
         rows.append(_batch_row(robot.name, 'fkine', 'robotica', lambda: fkine(robot, q), count))
@@ -168,7 +174,7 @@ def run_kinematics_benchmark(count: int = 1000, baseline_ik_count: int = 100, se
                                lambda: [baseline_fkine(robot, x) for x in q], count))
         say(f'{robot.name}: jacob0')
         rows.append(_row(robot.name, 'jacob0', 'robotica',
-                         _per_call(lambda x: jacob0(robot, x), q)))
+                         _per_call(lambda x: jacob0(arm, x, data=data), q)))
         rows.append(_row(robot.name, 'jacob0', 'numpy baseline',
                          _per_call(lambda x: baseline_jacob0(robot, x), q)))
         rows.append(_batch_row(robot.name, 'jacob0', 'robotica', lambda: jacob0(robot, q), count))

@@ -30,6 +30,7 @@ from robotica_kin.dh import as_dyn_model, DHModel
 from robotica_kin.dynamics import DEFAULT_GRAVITY, JointFriction, set_gravity
 from robotica_kin.finite import all_finite
 from robotica_kin.native_library import address, ERROR_SIZE, native_library
+from robotica_kin.pinocchio_model import build_model
 
 __all__ = ['ArmSimulation', 'ArmSimulationParams']
 
@@ -93,7 +94,7 @@ class ArmSimulation:
                 raise ValueError(f'{name} needs {n} values (one per joint), got {len(values)}')
         self.robot = robot
         self.params = params
-        self._model = pin.Model(robot.pinocchio_model)
+        self._model = build_model(robot)     # the plant's own: add_payload changes it
         set_gravity(self._model, params.gravity)
         self._tau_max = np.array(params.tau_max) if params.tau_max else np.full(n, np.inf)
         self._saturates = bool(np.isfinite(self._tau_max).any())
