@@ -1,6 +1,4 @@
-"""
-Finiteness checks: a fast test for the short vectors of every step, and a checked real.
-"""
+"""Finiteness checks: a fast test for the short vectors of every step, and a checked real."""
 
 import math
 import numbers
