@@ -1,4 +1,8 @@
-"""Tests of robotica_kin.mobile.odometry (book §4.7.2, §4.7.5; catalog §2.7, §2.9, §13.6)."""
+"""
+Tests of robotica_kin.mobile.odometry (book §4.7.2, §4.7.5; catalog §2.7, §2.9, §13.6).
+
+The encoder front end (ticks, twist, time) is tested in test_odometry_fusion.py.
+"""
 
 import math
 
@@ -13,12 +17,9 @@ from robotica_kin.mobile.differential_drive import (
     differential_drive_deriv,
     DifferentialDriveParams,
 )
-from robotica_kin.mobile.odometry import DiffDriveOdometry, odometry_increment, ODOMETRY_METHODS
+from robotica_kin.mobile.odometry import odometry_increment, ODOMETRY_METHODS
 
 PARAMS = DifferentialDriveParams(wheel_radius=0.1, wheel_separation=0.4)
-TICKS_PER_REV = 1000
-# Slides' conversion factor C_m = π D / (n C_e) [m/tick], D = 2c, gear ratio n = 1.
-C_M = math.pi * (2.0 * PARAMS.wheel_radius) / (1 * TICKS_PER_REV)
 
 
 def arc_end(pose, distance, turn):
@@ -122,28 +123,6 @@ def test_increment_rejects_bad_input(pose, deltas, b, method, match):
         odometry_increment(pose, *deltas, b, method)
 
 
-@pytest.mark.parametrize('updates', [1, 7, 60, 333])
-def test_constant_wheel_speeds_follow_the_circle(updates):
-    """
-    Constant tick rates (10 left, 20 right per update) drive an exact arc of R = 0.6 m.
-
-    R = (b/2)(N_i + N_d)/(N_d - N_i) = 0.2 * 30 / 10; after n updates the heading is
-    n (N_d - N_i) C_m / b and the pose is (R sin θ, R (1 - cos θ), θ) from the origin.
-    'exact_arc' reproduces it to 1e-9; 'midpoint' errs more, the slides' 'euler' most.
-    """
-    errors = {}
-    turn = updates * 10 * C_M / PARAMS.wheel_separation
-    radius = 0.6
-    expected = [radius * math.sin(turn), radius * (1.0 - math.cos(turn)), turn]
-    for method in ODOMETRY_METHODS:
-        odom = DiffDriveOdometry(PARAMS, TICKS_PER_REV, method)
-        for k in range(updates + 1):
-            pose = odom.update(10 * k, 20 * k, 0.1 * k)
-        errors[method] = pose_error(pose, expected)
-    assert errors['exact_arc'] < 1e-9
-    assert 1e-9 < errors['midpoint'] < errors['euler']
-
-
 def test_odometry_matches_simulated_piecewise_constant_wheel_speeds():
     """Cross-check with the model: wheel angles from rk4_step, exact arc per segment."""
     segments = [(1.0, 3.0, 2.0), (2.0, 2.0, 1.0), (-1.0, 1.0, 0.5), (4.0, -0.5, 1.5)]
@@ -157,109 +136,3 @@ def test_odometry_matches_simulated_piecewise_constant_wheel_speeds():
         travel = PARAMS.wheel_radius * (state[3:] - previous[3:])
         pose = odometry_increment(pose, travel[0], travel[1], PARAMS.wheel_separation)
     assert pose_error(pose, state[:3]) < 1e-9
-
-
-def test_first_update_only_latches():
-    odom = DiffDriveOdometry(PARAMS, TICKS_PER_REV)
-    odom.reset((1.0, 2.0, 0.5))
-    np.testing.assert_array_equal(odom.update(500, 700, 3.0), [1.0, 2.0, 0.5])
-    assert odom.twist == (0.0, 0.0)
-    np.testing.assert_array_equal(odom.update(500, 700, 4.0), [1.0, 2.0, 0.5])
-    assert odom.twist == (0.0, 0.0)
-
-
-def test_straight_line_and_twist():
-    odom = DiffDriveOdometry(PARAMS, TICKS_PER_REV)
-    odom.reset((1.0, 2.0, 0.5))
-    odom.update(100, 100, 1.0)
-    pose = odom.update(400, 400, 1.5)
-    distance = 300 * C_M
-    np.testing.assert_allclose(
-        pose, [1.0 + distance * math.cos(0.5), 2.0 + distance * math.sin(0.5), 0.5])
-    assert odom.twist == pytest.approx((distance / 0.5, 0.0))
-
-
-def test_spin_in_place_and_twist():
-    odom = DiffDriveOdometry(PARAMS, TICKS_PER_REV)
-    odom.update(0, 0, 0.0)
-    pose = odom.update(-100, 100, 0.25)
-    turn = 200 * C_M / PARAMS.wheel_separation
-    np.testing.assert_allclose(pose, [0.0, 0.0, turn], atol=1e-15)
-    assert odom.twist == pytest.approx((0.0, turn / 0.25))
-
-
-def test_twist_of_an_arc_and_of_reversing():
-    odom = DiffDriveOdometry(PARAMS, TICKS_PER_REV)
-    odom.update(0, 0, 0.0)
-    odom.update(100, 300, 0.5)
-    assert odom.twist == pytest.approx((200 * C_M / 0.5, 200 * C_M / 0.4 / 0.5))
-    odom.update(0, 200, 1.0)
-    assert odom.twist == pytest.approx((-100 * C_M / 0.5, 0.0))
-
-
-def test_zero_time_step_moves_the_pose_and_keeps_the_twist():
-    odom = DiffDriveOdometry(PARAMS, TICKS_PER_REV)
-    odom.update(0, 0, 0.0)
-    odom.update(100, 100, 1.0)
-    twist = odom.twist
-    pose = odom.update(200, 200, 1.0)
-    assert odom.twist == twist
-    assert pose[0] == pytest.approx(200 * C_M)
-
-
-def test_reset_forgets_ticks_and_twist():
-    odom = DiffDriveOdometry(PARAMS, TICKS_PER_REV)
-    odom.update(0, 0, 0.0)
-    odom.update(100, 300, 1.0)
-    odom.reset((3.0, 4.0, 7.0))
-    np.testing.assert_allclose(odom.pose, [3.0, 4.0, 7.0 - 2.0 * math.pi])
-    assert odom.twist == (0.0, 0.0)
-    np.testing.assert_allclose(odom.update(5000, -5000, 0.5), [3.0, 4.0, 7.0 - 2.0 * math.pi])
-
-
-def test_pose_is_a_copy():
-    odom = DiffDriveOdometry(PARAMS, TICKS_PER_REV)
-    odom.pose[0] = 99.0
-    odom.update(0, 0, 0.0)[1] = 99.0
-    np.testing.assert_array_equal(odom.pose, [0.0, 0.0, 0.0])
-
-
-@pytest.mark.parametrize('ticks', [0, -5, 2.5, True])
-def test_rejects_bad_ticks_per_revolution(ticks):
-    with pytest.raises(ValueError, match='ticks_per_revolution'):
-        DiffDriveOdometry(PARAMS, ticks)
-
-
-def test_rejects_unknown_method():
-    with pytest.raises(ValueError, match='method'):
-        DiffDriveOdometry(PARAMS, TICKS_PER_REV, 'rk4')
-
-
-def test_rejects_time_going_backwards_and_keeps_state():
-    odom = DiffDriveOdometry(PARAMS, TICKS_PER_REV)
-    odom.update(0, 0, 1.0)
-    odom.update(100, 300, 2.0)
-    pose, twist = odom.pose, odom.twist
-    with pytest.raises(ValueError, match='backwards'):
-        odom.update(200, 400, 1.5)
-    np.testing.assert_array_equal(odom.pose, pose)
-    assert odom.twist == twist
-    np.testing.assert_allclose(odom.update(100, 300, 2.5), pose)
-
-
-@pytest.mark.parametrize(('left', 'right', 't'), [
-    (math.nan, 0, 1.0),
-    (0, math.inf, 1.0),
-    (0, 0, math.nan),
-])
-def test_rejects_non_finite_update(left, right, t):
-    odom = DiffDriveOdometry(PARAMS, TICKS_PER_REV)
-    with pytest.raises(ValueError, match='finite'):
-        odom.update(left, right, t)
-
-
-@pytest.mark.parametrize('pose', [(0.0, 0.0), (0.0, 0.0, math.inf)])
-def test_reset_rejects_bad_pose(pose):
-    odom = DiffDriveOdometry(PARAMS, TICKS_PER_REV)
-    with pytest.raises(ValueError, match='pose'):
-        odom.reset(pose)

@@ -373,7 +373,8 @@ def increment_between_poses(pose_before: ArrayLike, pose_after: ArrayLike) -> tu
     The inverse of :func:`motion_model` for |Δθ| < π: Δθ = wrap(θ₁ - θ₀) and Δs is the
     displacement projected on the chord direction θ₀ + Δθ/2, divided by f(Δθ/2) = sin h / h.
     Use it to feed the filter from two successive poses of an odometry source (e.g.
-    :class:`robotica_kin.mobile.odometry.DiffDriveOdometry`); a displacement across the
+    :func:`robotica_kin.mobile.odometry.odometry_increment`, as
+    :class:`robotica_kin.mobile.odometry_fusion.OdometryFusion` does); a displacement across the
     chord (which an arc cannot produce) is ignored.
 
     Parameters

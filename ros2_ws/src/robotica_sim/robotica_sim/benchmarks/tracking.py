@@ -17,11 +17,12 @@ or Ackermann vehicle (c = 0.1 m, b = 0.4 m, l = 0.5 m, |α| <= 1.2 rad) along on
   (the heading jumps by π/2; no cusp).
 
 The closed paths start on the path heading along it. The law sees either the simulated truth
-(``ground_truth``) or the estimate of an :class:`~robotica_kin.mobile.ekf_localization.
-EkfLocalization` (``ekf_dgps``) fed, every step, the increments of two 2000-count encoders on
-the odometry wheels (the drive wheels of the differential base, the passive rear wheels of
-the steered ones), corrected by every compass heading and every DGPS fix (5 Hz, GPS error
-as two Gauss–Markov states, as the odometry node runs it). The ``speed`` argument of
+(``ground_truth``) or the estimate of the odometry node's EKF,
+:class:`~robotica_kin.mobile.odometry_fusion.OdometryFusion` (``ekf_dgps``), fed, every step,
+the counts of two 2000-count encoders on the odometry wheels (the drive wheels of the
+differential base, the passive rear wheels of the steered ones), corrected by every compass
+heading and every DGPS fix (5 Hz, GPS error as two Gauss–Markov states, as the odometry node
+runs it). The ``speed`` argument of
 ``update`` is the true forward speed, or the encoders' mean wheel speed of the last step.
 A steered vehicle gets the law's (v, ω) as the speed v and the steering angle
 α = atan(l ω / v) (α = 0 when v = 0), as the ``path_tracker`` node sends it, book (4.121).
@@ -67,7 +68,7 @@ from robotica_ctrl.mobile.path import PolylinePath
 from robotica_ctrl.mobile.path_shapes import circle, figure_eight, straight_line
 from robotica_ctrl.mobile.tracking_laws import LAWS, make_law, steering_angle
 from robotica_kin.angles import wrap_to_pi
-from robotica_kin.mobile.ekf_localization import EkfLocalization, OdometryNoise
+from robotica_kin.mobile.odometry_fusion import OdometryFusion, OdometryFusionParams
 from robotica_kin.mobile.vehicles import vehicle_kinematics, VehicleGeometry
 from robotica_sim.sensors.compass import CompassModel, CompassParams, heading_noise_stddev
 from robotica_sim.sensors.encoder import EncoderModel, EncoderParams
@@ -272,7 +273,7 @@ def control_effort(angular: ArrayLike, step: float = STEP) -> float:
 
 
 class _DeadReckoning:
-    """Encoders, compass and DGPS fused by the EKF, as the odometry node of a scenario."""
+    """Encoders, compass and DGPS fused by the odometry node's estimator, as in a scenario."""
 
     def __init__(self, sim: VehicleSimulation, seed: int) -> None:
         seeds = np.random.SeedSequence(seed).spawn(4)
@@ -282,35 +283,45 @@ class _DeadReckoning:
         compass_params = CompassParams(noise_stddev=2e-7)
         self._compass = CompassModel(compass_params, np.random.default_rng(seeds[2]))
         self._heading_variance = heading_noise_stddev(compass_params) ** 2
-        self._receiver = gps_preset('dgps')
-        self._gps = GpsModel(self._receiver, np.random.default_rng(seeds[3]))
-        self.ekf = EkfLocalization(
-            sim.pose, np.zeros((3, 3)), OdometryNoise(),
-            position_bias_stddev=float(self._receiver.correlated_stddev[0]),
-            position_bias_correlation_time=self._receiver.correlation_time)
+        receiver = gps_preset('dgps')
+        self._gps = GpsModel(receiver, np.random.default_rng(seeds[3]))
+        self._fusion = OdometryFusion(
+            OdometryFusionParams(wheel_radius=_GEOMETRY.wheel_radius,
+                                 wheel_separation=_GEOMETRY.track,
+                                 gps_bias_stddev=float(receiver.correlated_stddev[0]),
+                                 gps_bias_correlation_time=receiver.correlation_time,
+                                 gps_white_stddev=receiver.white_stddev),
+            sim.pose, np.zeros((3, 3)))
+        self._read_encoders()
+
+    def _read_encoders(self) -> None:
+        """Apply the encoder counts of the current state (the first ones start the estimate)."""
         counts = self._encoders[0].params.ticks_per_revolution
-        self._metres_per_tick = 2.0 * math.pi * _GEOMETRY.wheel_radius / counts
-        self._ticks = [encoder.ticks(angle)
-                       for encoder, angle in zip(self._encoders, sim.wheel_angles)]
-        self.speed = 0.0   # [m/s] mean wheel speed of the last step
+        left, right = (encoder.ticks(angle)
+                       for encoder, angle in zip(self._encoders, self._sim.wheel_angles))
+        self._fusion.add_encoders(left, right, counts, self._sim.t)
+        self._fusion.update()
 
     def update(self) -> None:
         """Fuse the readings of the step just taken."""
         sim = self._sim
         truth = sim.pose
-        readings = [encoder.ticks(angle)
-                    for encoder, angle in zip(self._encoders, sim.wheel_angles)]
-        left, right = (self._metres_per_tick * (new - old)
-                       for new, old in zip(readings, self._ticks))
-        self._ticks = readings
-        self.speed = 0.5 * (left + right) / STEP
-        self.ekf.predict(0.5 * (left + right), (right - left) / _GEOMETRY.track, dt=STEP)
+        self._read_encoders()
         _, heading = self._compass.measure(float(truth[2]))
-        self.ekf.update_heading(heading, self._heading_variance)
+        self._fusion.add_heading(sim.t, heading, self._heading_variance)
         fix = self._gps.measure(sim.t, (truth[0], truth[1], 0.0))
         if fix is not None:
-            self.ekf.update_position(fix.enu[:2], fix.covariance[:2, :2],
-                                     white_variance=self._receiver.white_stddev ** 2)
+            self._fusion.add_position(sim.t, fix.enu[:2], fix.covariance[:2, :2])
+
+    @property
+    def pose(self) -> NDArray[np.float64]:
+        """Estimated pose in the world frame: x [m], y [m], θ [rad]."""
+        return self._fusion.pose
+
+    @property
+    def speed(self) -> float:
+        """Mean wheel speed [m/s] of the last step."""
+        return self._fusion.twist[0]
 
 
 def run_tracking(law: str, vehicle: str, path: str, pose_source: str,
@@ -355,7 +366,7 @@ def run_tracking(law: str, vehicle: str, path: str, pose_source: str,
         if estimator is None:
             pose, speed = sim.pose, sim.twist[0]
         else:
-            pose, speed = estimator.ekf.pose, estimator.speed
+            pose, speed = estimator.pose, estimator.speed
         begin = time.thread_time_ns()
         output = tracker.update(pose, sim.t, speed)
         call_ns.append(time.thread_time_ns() - begin)

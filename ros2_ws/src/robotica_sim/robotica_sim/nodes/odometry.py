@@ -28,6 +28,10 @@ before a gyro publisher is matched, and each later one waits for the gyro sample
 ``fuse_compass`` the compass reading) of its time.
 Publishes ``odom`` (nav_msgs/Odometry: pose in ``odom_frame_id``, twist in ``base_frame_id``,
 REP-105, pose covariance of x, y and yaw) at each encoder reading.
+
+The estimator is :class:`robotica_kin.mobile.odometry_fusion.OdometryFusion`; this node declares
+its parameters, converts the messages to numbers (the fix to ENU), passes them in, logs what it
+reports and publishes each estimate.
 """
 import math
 
@@ -36,9 +40,10 @@ import numpy as np
 from rclpy.experimental import EventsExecutor
 from rclpy.node import Node
 from robotica_kin.geodetic import GeodeticOrigin
-from robotica_kin.mobile.ekf_localization import (EkfLocalization, increment_between_poses,
-                                                  OdometryNoise)
-from robotica_kin.mobile.odometry import odometry_increment, ODOMETRY_METHODS
+from robotica_kin.mobile.ekf_localization import OdometryNoise
+from robotica_kin.mobile.odometry import ODOMETRY_METHODS
+from robotica_kin.mobile.odometry_fusion import (FusionEvent, HEADING_SOURCES, OdometryEstimate,
+                                                 OdometryFusion, OdometryFusionParams)
 from robotica_kin.ros.convert import odometry_message, quaternion_to_yaw, stamp_to_seconds
 from robotica_kin.ros.entry_point import run_node
 from robotica_kin.ros.parameters import declare
@@ -47,10 +52,7 @@ from robotica_kin.ros.qos import (INPUT_QOS_OVERRIDES, STREAM_PUB_QOS, STREAM_RE
 from robotica_msgs.msg import WheelEncoders
 from sensor_msgs.msg import Imu, NavSatFix, NavSatStatus
 
-HEADING_SOURCES = ('encoders', 'gyro')
-PENDING_LIMIT = 1000   # measurements waiting for the estimate to reach their time
-GYRO_WAIT_READINGS = 25   # encoder readings that wait for a late gyro/compass (0.5 s at 50 Hz)
-STAMP_TOLERANCE = 1e-9    # [s] stamps closer than this are the same time
+SENSOR_NAMES = {'position': 'GPS fix', 'heading': 'compass heading'}   # in the log
 
 
 class OdometryNode(Node):
@@ -58,23 +60,17 @@ class OdometryNode(Node):
 
     def __init__(self) -> None:
         super().__init__('odometry')
-        self._radius = declare(self, 'wheel_radius', 0.1, 'Nominal wheel radius c [m], book '
-                               '(4.109)', low=1e-3, high=10.0, read_only=True)
-        self._track = declare(self, 'wheel_separation', 0.4,
-                              'Nominal track b between the odometry wheels [m], book (4.110)',
-                              low=1e-3, high=100.0, read_only=True)
-        self._method = declare(self, 'integration_method', 'exact_arc',
-                               f'Pose update: one of {ODOMETRY_METHODS} (slides §13.6, book '
-                               '(4.93))', read_only=True)
-        if self._method not in ODOMETRY_METHODS:
-            raise ValueError(f'integration_method must be one of {ODOMETRY_METHODS}, '
-                             f'got {self._method!r}')
-        self._heading_source = declare(self, 'heading_source', 'encoders',
-                                       f'Heading increments from: one of {HEADING_SOURCES}',
-                                       read_only=True)
-        if self._heading_source not in HEADING_SOURCES:
-            raise ValueError(f'heading_source must be one of {HEADING_SOURCES}, got '
-                             f'{self._heading_source!r}')
+        radius = declare(self, 'wheel_radius', 0.1, 'Nominal wheel radius c [m], book (4.109)',
+                         low=1e-3, high=10.0, read_only=True)
+        track = declare(self, 'wheel_separation', 0.4,
+                        'Nominal track b between the odometry wheels [m], book (4.110)',
+                        low=1e-3, high=100.0, read_only=True)
+        method = declare(self, 'integration_method', 'exact_arc',
+                         f'Pose update: one of {ODOMETRY_METHODS} (slides §13.6, book (4.93))',
+                         read_only=True)
+        heading_source = declare(self, 'heading_source', 'encoders',
+                                 f'Heading increments from: one of {HEADING_SOURCES}',
+                                 read_only=True)
         pose = [declare(self, 'initial_pose.' + k, 0.0, d, low=-1e6, high=1e6, read_only=True)
                 for k, d in (('x', 'Initial x [m] in the odom frame'),
                              ('y', 'Initial y [m] in the odom frame'),
@@ -90,8 +86,7 @@ class OdometryNode(Node):
             for k, d in (('k_distance', 'Variance of the travelled distance per metre [m²/m]'),
                          ('k_heading', 'Heading variance per metre travelled [rad²/m]'),
                          ('k_turn', 'Heading variance per radian turned [rad²/rad]'))})
-        self._noise = noise
-        self._gyro_bias_stddev = declare(
+        gyro_bias_stddev = declare(
             self, 'gyro_bias_stddev', 1e-3, 'Uncertainty of the gyro bias [rad/s] (heading_source '
             'gyro): its heading variance grows by (sigma dt)^2 per reading', low=0.0, high=1.0,
             read_only=True)
@@ -102,11 +97,6 @@ class OdometryNode(Node):
                     ('correlation_time', 60.0, 'Its correlation time [s]', 1e-3, 1e6),
                     ('white_stddev', 0.0, 'Std. dev. of the white part of a fix per axis [m]; '
                      '0: the fix covariance minus the bias variance', 0.0, 1e3))]
-        self._white_variance = bias[2] ** 2 if bias[2] > 0.0 else None
-        self._ekf = EkfLocalization(pose, np.diag([sigma0[0] ** 2, sigma0[0] ** 2,
-                                                   sigma0[1] ** 2]), noise,
-                                    position_bias_stddev=bias[0],
-                                    position_bias_correlation_time=bias[1])
         self._fuse_gps = declare(self, 'fuse_gps', False, 'Correct with gps/fix (EKF)',
                                  read_only=True)
         self._fuse_compass = declare(self, 'fuse_compass', False,
@@ -122,28 +112,24 @@ class OdometryNode(Node):
                                    read_only=True)
         self._base_frame = declare(self, 'base_frame_id', 'base_link', 'Frame of the robot',
                                    read_only=True)
-        self._last_ticks: tuple[int, int, float] | None = None
-        self._twist = (0.0, 0.0)
-        # (t, rate, variance) of the gyro samples not yet integrated
-        self._gyro_samples: list[tuple[float, float, float]] = []
-        self._newest_gyro_t: float | None = None   # [s] stamp of the newest gyro sample received
-        self._newest_compass_t: float | None = None   # [s] and of the newest compass reading
-        self._gyro_t = 0.0                          # [s] the gyro is integrated up to here
-        self._first_reading_t: float | None = None
-        self._readings: list[tuple[int, int, float, int]] = []   # encoder readings waiting
         self._max_rejections = declare(
             self, 'gate.max_rejections', 10, 'Consecutive rejections of one sensor after which '
             'the covariance is inflated by its innovation and the measurement applied',
             low=1, high=100000, read_only=True)
-        self._streaks: dict[str, int] = {}
-        self._pending: list[tuple] = []   # (t, update, what, inflation), see _defer
-        self._rejections = 0
+        self._fusion = OdometryFusion(
+            OdometryFusionParams(
+                wheel_radius=radius, wheel_separation=track, integration_method=method,
+                heading_source=heading_source, odometry_noise=noise,
+                gyro_bias_stddev=gyro_bias_stddev, gps_bias_stddev=bias[0],
+                gps_bias_correlation_time=bias[1], gps_white_stddev=bias[2],
+                wait_for_compass=self._fuse_compass, max_rejections=self._max_rejections),
+            pose, np.diag([sigma0[0] ** 2, sigma0[0] ** 2, sigma0[1] ** 2]))
         self._pub = self.create_publisher(Odometry, 'odom', STREAM_PUB_QOS)
         overrides = INPUT_QOS_OVERRIDES
         self.create_subscription(WheelEncoders, 'wheel_encoders', self._on_ticks, STREAM_SUB_QOS,
                                  qos_overriding_options=overrides)
         self._gyro_sub = None
-        if self._heading_source == 'gyro':
+        if heading_source == 'gyro':
             self._gyro_sub = self.create_subscription(Imu, 'imu/data', self._on_gyro,
                                                       STREAM_REPLAY_SUB_QOS,
                                                       qos_overriding_options=overrides)
@@ -155,132 +141,31 @@ class OdometryNode(Node):
                                      STREAM_REPLAY_SUB_QOS, qos_overriding_options=overrides)
         fused = [name for name, on in (('GPS', self._fuse_gps),
                                        ('compass', self._fuse_compass)) if on]
-        self.get_logger().info(f'heading from {self._heading_source}, {self._method} update; '
+        self.get_logger().info(f'heading from {heading_source}, {method} update; '
                                f'fusing {", ".join(fused) or "nothing (dead reckoning)"}')
 
     # -- inputs ------------------------------------------------------------------------------
     def _on_gyro(self, msg: Imu) -> None:
-        t = stamp_to_seconds(msg.header.stamp)
-        rate = msg.angular_velocity.z
-        variance = msg.angular_velocity_covariance[8]
-        if not (math.isfinite(rate) and math.isfinite(variance)):
+        try:
+            new = self._fusion.add_gyro(stamp_to_seconds(msg.header.stamp),
+                                        msg.angular_velocity.z,
+                                        msg.angular_velocity_covariance[8])
+        except ValueError:
             self.get_logger().warn('non-finite gyro reading; ignored', throttle_duration_sec=5.0)
             return
-        if self._newest_gyro_t is not None and t <= self._newest_gyro_t + STAMP_TOLERANCE:
-            return   # a sample again, or one older than the newest: nothing new
-        self._newest_gyro_t = t
-        self._gyro_samples.append((t, rate, max(variance, 0.0)))
-        self._drain_readings()
+        if new:
+            self._update()
 
     def _on_ticks(self, msg: WheelEncoders) -> None:
-        if msg.ticks_per_revolution < 1:
+        try:
+            self._fusion.add_encoders(msg.left_ticks, msg.right_ticks,
+                                      msg.ticks_per_revolution,
+                                      stamp_to_seconds(msg.header.stamp))
+        except ValueError:   # a message's counts and stamp are integers: the resolution is 0
             self.get_logger().warn('wheel_encoders with ticks_per_revolution 0; ignored',
                                    throttle_duration_sec=5.0)
             return
-        reading = (msg.left_ticks, msg.right_ticks, stamp_to_seconds(msg.header.stamp),
-                   msg.ticks_per_revolution)
-        if self._readings and abs(self._readings[-1][2] - reading[2]) <= STAMP_TOLERANCE:
-            self._readings[-1] = reading   # a waiting state sent again: answered once
-        else:
-            self._readings.append(reading)
-        self._drain_readings()
-
-    def _drain_readings(self) -> None:
-        """
-        Process the encoder readings in order, each once its heading increment is known.
-
-        With the heading from the gyro, the first reading waits until a gyro publisher is
-        matched (in lockstep the loop's answer to step 0 then shows that the gyro is connected;
-        the simulator publishes step 0 again until it is answered), and a later reading of time
-        t waits for the gyro sample of time t (a separate process may deliver it later, and a
-        late match replays it). With ``fuse_compass`` it also waits for the compass reading of
-        time t, so that the reading is compared with the estimate of its own time: applied to a
-        newer estimate, readings that came late under load pulled the heading back by up to
-        0.25 rad and put y outside its 3 sigma for a quarter of a figure eight. After
-        ``GYRO_WAIT_READINGS`` readings without them, the oldest goes on with the samples so
-        far, and the node says so; a gyro sample that comes later still counts, at the next
-        reading.
-        """
-        while self._readings:
-            t = self._readings[0][2]
-            if self._last_ticks is None:
-                waiting = (self._heading_source == 'gyro'
-                           and self._gyro_sub.get_publisher_count() == 0)
-            else:
-                waiting = any(on and (newest is None or newest < t - STAMP_TOLERANCE)
-                              for on, newest in (
-                                  (self._heading_source == 'gyro', self._newest_gyro_t),
-                                  (self._fuse_compass, self._newest_compass_t)))
-            if waiting and len(self._readings) <= GYRO_WAIT_READINGS:
-                if self._last_ticks is None:
-                    self.get_logger().info('waiting for a gyro publisher on imu/data',
-                                           throttle_duration_sec=5.0)
-                return
-            if waiting:
-                self.get_logger().warn(f'no gyro or compass sample up to t = {t:.3f} s: going '
-                                       'on with the samples so far', throttle_duration_sec=5.0)
-            self._process_reading(*self._readings.pop(0))
-
-    def _process_reading(self, left_ticks: int, right_ticks: int, t: float,
-                         ticks_per_revolution: int) -> None:
-        if self._last_ticks is None:
-            self._last_ticks = (left_ticks, right_ticks, t)
-            self._first_reading_t = self._gyro_t = t
-            # Replayed history from before the estimate starts (a restarted node): dropped.
-            self._gyro_samples = [g for g in self._gyro_samples if g[0] > t + STAMP_TOLERANCE]
-            stale = [p for p in self._pending if p[0] < t - STAMP_TOLERANCE]
-            if stale:
-                self._pending = [p for p in self._pending if p[0] >= t - STAMP_TOLERANCE]
-                self.get_logger().info(f'{len(stale)} measurements older than the first encoder '
-                                       f'reading (t = {t:.3f} s) dropped')
-            self._apply_due(t)
-            self._publish(t)
-            return
-        left0, right0, t0 = self._last_ticks
-        if abs(t - t0) <= STAMP_TOLERANCE:   # the same state again (lockstep start-up):
-            self._publish(t)                 # answer it again; any travel counts at the next
-            return
-        if t < t0:
-            self.get_logger().warn(f'encoder time went back ({t0} -> {t} s); reading ignored',
-                                   throttle_duration_sec=5.0)
-            return
-        metres_per_tick = 2.0 * math.pi * self._radius / ticks_per_revolution
-        left = metres_per_tick * (left_ticks - left0)
-        right = metres_per_tick * (right_ticks - right0)
-        self._last_ticks = (left_ticks, right_ticks, t)
-        heading_variance = None
-        if self._heading_source == 'gyro':
-            angle, gyro_variance = self._gyro_turn(t)
-            # Keep the distance of the wheels, take the turn from the gyro (§7.7.3).
-            centre, half_turn = 0.5 * (left + right), 0.5 * angle * self._track
-            left, right = centre - half_turn, centre + half_turn
-            # The reported white noise, plus what a gyro's covariance leaves out: its scale
-            # factor (k_turn per radian turned) and its bias over the interval.
-            heading_variance = (gyro_variance + self._noise.k_turn * abs(angle)
-                                + (self._gyro_bias_stddev * (t - t0)) ** 2)
-        before = self._ekf.pose
-        after = odometry_increment(before, left, right, self._track, self._method)
-        distance, turn = increment_between_poses(before, after)
-        self._ekf.predict(distance, turn, heading_variance=heading_variance, dt=t - t0)
-        self._twist = (0.5 * (left + right) / (t - t0), (right - left) / self._track / (t - t0))
-        self._apply_due(t)
-        self._publish(t)
-
-    def _gyro_turn(self, t: float) -> tuple[float, float]:
-        """
-        Return the turn [rad] and its variance [rad²] from the gyro samples up to time ``t`` [s].
-
-        Each sample's rate holds over the interval since the previous one (the gyro emulator's
-        sample period); the first sample of a run covers the time since the first reading.
-        """
-        angle = variance = 0.0
-        while self._gyro_samples and self._gyro_samples[0][0] <= t + STAMP_TOLERANCE:
-            sample_t, rate, rate_variance = self._gyro_samples.pop(0)
-            dt = max(sample_t - self._gyro_t, 0.0)
-            angle += rate * dt
-            variance += rate_variance * dt * dt
-            self._gyro_t = max(self._gyro_t, sample_t)
-        return angle, variance
+        self._update()
 
     def _on_fix(self, msg: NavSatFix) -> None:
         if msg.status.status == NavSatStatus.STATUS_NO_FIX:
@@ -295,99 +180,64 @@ class OdometryNode(Node):
                                    throttle_duration_sec=5.0)
             return
         east, north, _ = self._origin.geodetic_to_enu(*values)
-
-        def inflation() -> list[float]:
-            state = self._ekf.state
-            predicted = state[:2] + (state[3:5] if state.size == 5 else 0.0)
-            return [(east - predicted[0]) ** 2, (north - predicted[1]) ** 2, 0.0]
-
-        self._defer(stamp_to_seconds(msg.header.stamp),
-                    lambda: self._ekf.update_position([east, north], covariance,
-                                                      white_variance=self._white_variance),
-                    'GPS fix', inflation)
+        self._report(self._fusion.add_position(stamp_to_seconds(msg.header.stamp),
+                                               [east, north], covariance))
 
     def _on_heading(self, msg: Imu) -> None:
-        t = stamp_to_seconds(msg.header.stamp)
-        self._newest_compass_t = max(t, self._newest_compass_t or t)
-        yaw = quaternion_to_yaw(msg.orientation)
-        variance = msg.orientation_covariance[8]
-        if not (math.isfinite(yaw) and math.isfinite(variance) and variance > 0.0):
-            self.get_logger().warn('compass heading without a finite, positive variance; '
-                                   'ignored', throttle_duration_sec=5.0)
-        else:
-            self._defer(t, lambda: self._ekf.update_heading(yaw, variance), 'compass heading',
-                        lambda: [0.0, 0.0,
-                                 math.remainder(yaw - self._ekf.pose[2], math.tau) ** 2])
-        self._drain_readings()
+        self._report(self._fusion.add_heading(stamp_to_seconds(msg.header.stamp),
+                                              quaternion_to_yaw(msg.orientation),
+                                              msg.orientation_covariance[8]))
+        self._update()
 
-    def _defer(self, t: float, update, what: str, inflation) -> None:
-        """
-        Apply a measurement of time ``t`` [s] once the estimate has reached ``t``.
+    # -- the estimator and its output --------------------------------------------------------
+    def _update(self) -> None:
+        """Apply the encoder readings whose gyro/compass samples are in; publish each."""
+        connected = self._gyro_sub is None or self._gyro_sub.get_publisher_count() > 0
+        estimates, events = self._fusion.update(gyro_connected=connected)
+        self._report(events)
+        for estimate in estimates:
+            self._publish(estimate)
 
-        The sensors are separate processes: a compass reading of step k may arrive before the
-        encoder reading that moves the estimate to step k, and compared with the pose of step
-        k - 1 it would carry the turn of one step as an error. It waits in a queue (at most
-        ``PENDING_LIMIT``) until then; a reading older than the estimate is applied at once,
-        and one older than the first encoder reading (replayed history) is dropped.
-        """
-        if self._first_reading_t is not None and t < self._first_reading_t - STAMP_TOLERANCE:
-            return
-        if self._last_ticks is not None and t <= self._last_ticks[2] + STAMP_TOLERANCE:
-            self._correct(update, what, inflation)
-            return
-        if len(self._pending) >= PENDING_LIMIT:
-            self._pending.pop(0)
-            self.get_logger().warn('no encoder reading reaches the time of the queued '
-                                   'measurements: dropping the oldest', throttle_duration_sec=5.0)
-        self._pending.append((t, update, what, inflation))
+    def _report(self, events: list[FusionEvent]) -> None:
+        """Log what the fusion did; one call per kind, so that each throttles on its own."""
+        log = self.get_logger()
+        for event in events:
+            name = SENSOR_NAMES.get(event.sensor, event.sensor)
+            match event.kind:
+                case 'waiting_for_gyro':
+                    log.info('waiting for a gyro publisher on imu/data',
+                             throttle_duration_sec=5.0)
+                case 'went_on_without_samples':
+                    log.warn(f'no gyro or compass sample up to t = {event.t:.3f} s: going on '
+                             'with the samples so far', throttle_duration_sec=5.0)
+                case 'stale_dropped':
+                    log.info(f'{event.count} measurements older than the first encoder reading '
+                             f'(t = {event.t:.3f} s) dropped')
+                case 'time_went_back':
+                    log.warn(f'encoder time went back ({event.t_previous} -> {event.t} s); '
+                             'reading ignored', throttle_duration_sec=5.0)
+                case 'queue_full':
+                    log.warn('no encoder reading reaches the time of the queued measurements: '
+                             'dropping the oldest', throttle_duration_sec=5.0)
+                case 'invalid_heading':
+                    log.warn('compass heading without a finite, positive variance; ignored',
+                             throttle_duration_sec=5.0)
+                case 'refused':
+                    log.warn(f'{name} refused: {event.error}', throttle_duration_sec=5.0)
+                case 'rejected':
+                    log.warn(f'{name} rejected by the innovation gate ({event.count} '
+                             'rejections so far)', throttle_duration_sec=5.0)
+                case 'reopened':
+                    log.warn(f'{self._max_rejections} rejections of the {name} in a row: the '
+                             'estimate has drifted; covariance inflated, '
+                             f'{name} {"applied" if event.applied else "still rejected"}')
 
-    def _apply_due(self, t: float) -> None:
-        """Apply the queued measurements of time <= ``t`` [s], in time order."""
-        due = sorted((p for p in self._pending if p[0] <= t + STAMP_TOLERANCE),
-                     key=lambda p: p[0])
-        self._pending = [p for p in self._pending if p[0] > t + STAMP_TOLERANCE]
-        for _, update, what, inflation in due:
-            self._correct(update, what, inflation)
-
-    def _correct(self, update, what: str, inflation) -> None:
-        """
-        Apply ``update``; after ``gate.max_rejections`` rejections in a row, re-open the filter.
-
-        A filter that has drifted (a gyro sample lost at start-up, a wheel that slipped) while
-        believing itself accurate rejects every correction from then on. After too many
-        consecutive rejections of one sensor, its innovation squared, ``inflation()``, is added
-        to the pose variances and the measurement is applied again.
-        """
-        try:
-            accepted = update()
-        except ValueError as err:
-            self.get_logger().warn(f'{what} refused: {err}', throttle_duration_sec=5.0)
-            return
-        if accepted:
-            self._streaks[what] = 0
-            return
-        self._streaks[what] = self._streaks.get(what, 0) + 1
-        self._rejections += 1
-        self.get_logger().warn(f'{what} rejected by the innovation gate ({self._rejections} '
-                               'rejections so far)', throttle_duration_sec=5.0)
-        if self._streaks[what] >= self._max_rejections:
-            covariance = self._ekf.full_covariance
-            covariance[np.diag_indices(3)] += inflation()
-            self._ekf.reset(self._ekf.state, covariance)
-            self._streaks[what] = 0
-            self.get_logger().warn(
-                f'{self._max_rejections} rejections of the {what} in a row: the estimate has '
-                'drifted; '
-                f'covariance inflated, {what} {"applied" if update() else "still rejected"}')
-
-    # -- output ------------------------------------------------------------------------------
-    def _publish(self, t: float) -> None:
-        out = odometry_message(t, self._odom_frame, self._base_frame, self._ekf.pose,
-                               self._twist)
-        p = self._ekf.covariance
+    def _publish(self, estimate: OdometryEstimate) -> None:
+        out = odometry_message(estimate.t, self._odom_frame, self._base_frame, estimate.pose,
+                               estimate.twist)
         covariance = np.zeros((6, 6))            # (x, y, z, roll, pitch, yaw)
         index = [0, 1, 5]
-        covariance[np.ix_(index, index)] = p
+        covariance[np.ix_(index, index)] = estimate.covariance
         out.pose.covariance = [float(v) for v in covariance.ravel()]
         self._pub.publish(out)
 
