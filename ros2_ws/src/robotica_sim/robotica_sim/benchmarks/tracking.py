@@ -33,7 +33,8 @@ drawn from the same seed in every run (common random numbers).
 
 **Metrics** (:class:`TrackingResult`), over the samples k = 0..N of the *true* pose, at the
 start and after every step (Δt = 0.02 s), projected onto the path by this module
-(:func:`track_errors`), not taken from what the law reports:
+with the project's one projection (:func:`robotica_sim.grading.metrics.path_errors`, as
+``robotica grade`` does), not taken from what the law reports:
 
 * cross-track error e_k [m]: signed lateral offset of the true guide point from its closest
   path point (searched within 1 m of arc length around the previous one, so a closed path is
@@ -67,9 +68,9 @@ from numpy.typing import ArrayLike, NDArray
 from robotica_ctrl.mobile.path import PolylinePath
 from robotica_ctrl.mobile.path_shapes import circle, figure_eight, straight_line
 from robotica_ctrl.mobile.tracking_laws import LAWS, make_law, steering_angle
-from robotica_kin.angles import wrap_to_pi
 from robotica_kin.mobile.odometry_fusion import OdometryFusion, OdometryFusionParams
 from robotica_kin.mobile.vehicles import vehicle_kinematics, VehicleGeometry
+from robotica_sim.grading.metrics import path_errors, rms
 from robotica_sim.sensors.compass import CompassModel, CompassParams, heading_noise_stddev
 from robotica_sim.sensors.encoder import EncoderModel, EncoderParams
 from robotica_sim.sensors.gps import gps_preset, GpsModel
@@ -77,8 +78,8 @@ from robotica_sim.simulation.vehicle import VehicleSimulation, VehicleSimulation
 
 __all__ = ['BENCHMARK_GAINS', 'PATHS', 'POSE_SOURCES', 'SETTLING_THRESHOLD', 'TIMEOUT_FACTOR',
            'TrackingResult', 'VEHICLES', 'benchmark_path', 'control_effort',
-           'format_tracking_table', 'plot_tracking', 'rms', 'run_tracking',
-           'settling_distance', 'track_errors', 'tracking_benchmark']
+           'format_tracking_table', 'plot_tracking', 'run_tracking', 'settling_distance',
+           'tracking_benchmark']
 
 STEP = 0.02                 # [s] 50 Hz, as the scenarios
 CRUISE_SPEED = 0.5          # [m/s] of every law
@@ -196,46 +197,6 @@ def benchmark_path(name: str) -> tuple[PolylinePath, NDArray[np.float64]]:
     else:
         raise ValueError(f'path must be one of {PATHS}, got {name!r}')
     return PolylinePath(points), np.array(pose)
-
-
-def track_errors(path: PolylinePath, poses: ArrayLike,
-                 window: float = PROJECTION_WINDOW) -> tuple[NDArray[np.float64],
-                                                             NDArray[np.float64]]:
-    """
-    Return the cross-track [m] and heading errors [rad] (N,) of poses (N, 3) along ``path``.
-
-    Each pose (x [m], y [m], θ [rad]) is projected onto ``path`` within ``window`` [m] of arc
-    length around the previous projection (the first one around s = 0): the cross-track
-    error is its signed lateral offset (> 0 left of the path), the heading error θ minus the
-    heading of the closest segment, wrapped to (-π, π].
-
-    >>> line = PolylinePath([[0.0, 0.0], [4.0, 0.0]])
-    >>> cross, heading = track_errors(line, [[1.0, 0.1, 0.2], [2.0, -0.3, 0.0]])
-    >>> cross.tolist(), heading.tolist()
-    ([0.1, -0.3], [0.2, 0.0])
-
-    """
-    p = np.asarray(poses, dtype=np.float64)
-    cross = np.empty(len(p))
-    heading = np.empty(len(p))
-    s = 0.0
-    for k, (x, y, theta) in enumerate(p):
-        projection = path.project((x, y), s_hint=s, window=window)
-        s = projection.s
-        cross[k] = projection.cross_track
-        heading[k] = wrap_to_pi(theta - projection.tangent_heading)
-    return cross, heading
-
-
-def rms(values: ArrayLike) -> float:
-    """
-    Return the root mean square of ``values`` (same unit); NaN when empty.
-
-    >>> rms([3.0, -3.0, 3.0, -3.0])
-    3.0
-    """
-    v = np.asarray(values, dtype=np.float64)
-    return math.sqrt(float(np.mean(v * v))) if v.size else math.nan
 
 
 def settling_distance(cross_track: ArrayLike, travelled: ArrayLike,
@@ -382,7 +343,8 @@ def run_tracking(law: str, vehicle: str, path: str, pose_source: str,
             estimator.update()
     trajectory = np.array(poses)
     trajectory.flags.writeable = False
-    cross, heading = track_errors(reference, trajectory)
+    _, cross, heading = path_errors(reference, trajectory[:, 0], trajectory[:, 1],
+                                    trajectory[:, 2], PROJECTION_WINDOW)
     travelled = _travelled(trajectory)
     times_us = np.array(call_ns) * 1e-3
     return TrackingResult(
@@ -533,7 +495,8 @@ def _trajectory_figure(plt: Any, runs: list[list[TrackingResult | None]]) -> Any
             label = run.law + ('' if run.completed else ' (timed out)')
             top.plot(run.trajectory[:, 0], run.trajectory[:, 1], color=colours(number),
                      linewidth=1.2, label=label)
-            cross, _ = track_errors(reference, run.trajectory)
+            _, cross, _ = path_errors(reference, run.trajectory[:, 0], run.trajectory[:, 1],
+                                      run.trajectory[:, 2], PROJECTION_WINDOW)
             bottom.plot(_travelled(run.trajectory), cross, color=colours(number),
                         linewidth=1.0, label=label)
         top.set_aspect('equal', adjustable='datalim')
