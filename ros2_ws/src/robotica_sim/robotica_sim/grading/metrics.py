@@ -488,7 +488,7 @@ def _arm(run: RunSeries, params: MetricParams, out: RunMetrics) -> None:
         e = controller['position_error']
         q_d = controller['reference_position']
         q = q_d - e
-        values['rms_joint_error'] = np.sqrt(np.mean(e * e, axis=0)).tolist()
+        values['rms_joint_error'] = [rms(column) for column in e.T]
         values['max_joint_error'] = np.max(np.abs(e), axis=0).tolist()
         span = np.maximum(np.ptp(q_d, axis=0), np.abs(e[0]))
         settling = [settling_time(controller.t, e[:, j], params.settling_band * span[j])
