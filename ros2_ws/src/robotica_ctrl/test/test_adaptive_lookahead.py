@@ -14,8 +14,8 @@ import numpy as np
 import pytest
 
 from robotica_ctrl.mobile.adaptive_lookahead import (
-    AdaptivePurePursuit, lookahead_by_curvature, lookahead_by_error, lookahead_by_speed,
-    LookaheadRule)
+    adaptive_params, AdaptivePurePursuit, lookahead_by_curvature, lookahead_by_error,
+    lookahead_by_speed, LookaheadRule)
 from robotica_ctrl.mobile.path import PolylinePath
 from robotica_ctrl.mobile.pure_pursuit import PurePursuitParams
 
@@ -80,16 +80,16 @@ def test_update_sets_the_lookahead_of_the_wrapped_tracker():
     path = PolylinePath([[0.0, 0.0], [10.0, 0.0]])
     params = PurePursuitParams(desired_linear_velocity=1.0, max_angular_velocity=10.0)
     tracker = AdaptivePurePursuit(path, params, LookaheadRule('speed', 2.0, 0.3, 5.0))
-    command = tracker.update([0.0, 0.0, 0.0])
+    command = tracker.update([0.0, 0.0, 0.0], 0.0)
     assert tracker.lookahead_distance == 2.0  # 2 s · 1 m/s (desired speed at first)
-    np.testing.assert_allclose(command.goal_point, [2.0, 0.0])
-    tracker.update([0.0, 0.0, 0.0], speed=0.5)
+    np.testing.assert_allclose(command.target_point, [2.0, 0.0])
+    tracker.update([0.0, 0.0, 0.0], 0.1, speed=0.5)
     assert tracker.lookahead_distance == 1.0
     assert tracker.tracker.params.desired_linear_velocity == 1.0  # the rest is kept
     with pytest.raises(ValueError):
-        tracker.update([0.0, 0.0, 0.0], speed=math.nan)
+        tracker.update([0.0, 0.0, 0.0], 0.2, speed=math.nan)
     with pytest.raises(ValueError):
-        tracker.update([0.0, 0.0])
+        tracker.update([0.0, 0.0], 0.2)
 
 
 def test_curvature_rule_on_a_circle():
@@ -98,10 +98,10 @@ def test_curvature_rule_on_a_circle():
     path = PolylinePath(radius * np.column_stack((np.cos(angles), np.sin(angles))))
     tracker = AdaptivePurePursuit(path, PurePursuitParams(),
                                   LookaheadRule('curvature', 0.5, 0.3, 5.0))
-    tracker.update([radius, 0.0, math.pi / 2])  # at the start: one-sided, straight
+    tracker.update([radius, 0.0, math.pi / 2], 0.0)  # at the start: one-sided, straight
     assert tracker.lookahead_distance == 5.0
     tracker.tracker.set_params(PurePursuitParams(search_window=10.0))
-    tracker.update([0.0, radius, math.pi])
+    tracker.update([0.0, radius, math.pi], 0.0)
     assert tracker.lookahead_distance == pytest.approx(0.5 * radius, rel=1e-2)
 
 
@@ -109,8 +109,8 @@ def simulate(tracker, pose, duration, dt):
     """Drive a unicycle with the tracker's commands; return poses (K, 3) and L (K,)."""
     pose = np.asarray(pose, dtype=float)
     poses, lookaheads = [], []
-    for _ in range(round(duration / dt)):
-        command = tracker.update(pose)
+    for k in range(round(duration / dt)):
+        command = tracker.update(pose, k * dt)
         poses.append(pose)
         lookaheads.append(tracker.lookahead_distance)
         heading = pose[2] + 0.5 * dt * command.angular
@@ -133,3 +133,22 @@ def test_closed_loop_converges_on_a_straight_line_with_offset(rule):
     if rule.kind == 'error':
         assert lookaheads[0] == pytest.approx(1.5)  # 0.5 + 2 · 0.5
         assert lookaheads[-1] == pytest.approx(0.5, abs=0.02)  # on the path: minimum
+
+
+def test_gains_by_the_node_names():
+    params, rule = adaptive_params({'rule': 'curvature', 'gain': 0.5, 'min_lookahead': 0.4,
+                                    'max_lookahead': 2.0, 'curvature_spacing': 0.3,
+                                    'desired_linear_velocity': 0.8})
+    assert rule == LookaheadRule('curvature', 0.5, 0.4, 2.0, 0.3)
+    assert params == PurePursuitParams(lookahead_distance=0.4, desired_linear_velocity=0.8)
+    path = PolylinePath([[0.0, 0.0], [10.0, 0.0]])
+    tracker = AdaptivePurePursuit(path, params, rule)
+    tracker.set_gains({'rule': 'error', 'gain': 2.0})
+    assert tracker.rule == LookaheadRule('error', 2.0, 0.4, 2.0, 0.3)
+    tracker.update([0.0, 0.5, 0.0], 0.0)
+    assert tracker.lookahead_distance == pytest.approx(1.4)   # 0.4 + 2 · 0.5
+    with pytest.raises(ValueError):
+        tracker.set_gains({'min_lookahead': 3.0})   # above max_lookahead
+    with pytest.raises(ValueError):
+        adaptive_params({'lookahead': 1.0})
+    assert tracker.rule.minimum == 0.4

@@ -44,8 +44,8 @@ def run_unicycle(follower, pose, duration, dt):
 
     Returns the times (K,), poses (K, 3) and the commands at those poses.
     """
-    def deriv(_t, state):
-        cmd = follower.update(state)
+    def deriv(t, state):
+        cmd = follower.update(state, t)
         return [cmd.linear * math.cos(state[2]), cmd.linear * math.sin(state[2]), cmd.angular]
 
     pose = np.asarray(pose, dtype=float)
@@ -54,7 +54,7 @@ def run_unicycle(follower, pose, duration, dt):
     for k in range(steps + 1):
         times.append(k * dt)
         poses.append(pose)
-        commands.append(follower.update(pose))
+        commands.append(follower.update(pose, k * dt))
         if k < steps:
             pose = rk4_step(deriv, k * dt, pose, dt)
     return np.array(times), np.array(poses), commands
@@ -231,7 +231,7 @@ def test_ejemplo_9_5_straight_path(k1, k2):
     follower = FrenetPathFollower(path, params)
     times, poses, commands = run_unicycle(follower, [0.0, 0.0, heading_from_book(0.0)], 10.0,
                                           0.04)
-    d = np.array([cmd.lateral_error for cmd in commands])
+    d = np.array([cmd.cross_track for cmd in commands])
     assert d[0] == pytest.approx(d0)
     b, delta = math.sqrt(k1), k2 / (2.0 * math.sqrt(k1))
     rho = times
@@ -271,7 +271,7 @@ def test_nonlinear_law_large_heading_error():
     assert in_convergence_region(2.0, 2.5, params.k1, 0.0)
     _, poses, commands = run_unicycle(FrenetPathFollower(path, params), [0.0, 2.0, 2.5], 20.0,
                                       0.02)
-    assert abs(commands[-1].lateral_error) < 1e-3
+    assert abs(commands[-1].cross_track) < 1e-3
     assert abs(commands[-1].heading_error) < 1e-3
     assert abs(poses[-1, 1]) < 1e-3
 
@@ -288,18 +288,19 @@ def test_circle_from_offset(law, direction, offset):
     assert in_convergence_region(offset, 0.0, params.k1, 1.0 / radius)
     start = [radius - direction * offset, 0.0, direction * 0.5 * math.pi]  # d = offset
     follower = FrenetPathFollower(path, params)
-    assert follower.update(start).lateral_error == pytest.approx(offset, abs=1e-4)
+    assert follower.update(start, 0.0).cross_track == pytest.approx(offset, abs=1e-4)
     follower.reset()
     times, poses, commands = run_unicycle(follower, start, 22.0, 0.05)
     late = (times >= 12.0) & (times <= 17.0)  # s from about 12 m to 17 m of 18.85 m
-    assert not any(cmd.finished for cmd in np.array(commands)[times <= 17.0])
+    assert not any(cmd.finished for cmd, t in zip(commands, times) if t <= 17.0)
     chord = math.pi / 720.0  # a chord's heading is within π/n of the circle's tangent
-    for cmd in np.array(commands)[late]:
-        assert abs(cmd.lateral_error) < 1e-3
+    late_commands = [cmd for cmd, is_late in zip(commands, late) if is_late]
+    for cmd in late_commands:
+        assert abs(cmd.cross_track) < 1e-3
         assert abs(cmd.heading_error) < chord + 1e-3
         # The feedback k2 θ̃ follows the chord headings' steps of up to 2π/n.
-        assert abs(cmd.curvature - direction / radius) < params.k2 * 2.0 * chord
-    curvatures = [cmd.curvature for cmd in np.array(commands)[late]]
+        assert abs(cmd.extras['curvature'] - direction / radius) < params.k2 * 2.0 * chord
+    curvatures = [cmd.extras['curvature'] for cmd in late_commands]
     assert np.mean(curvatures) == pytest.approx(direction / radius, rel=2e-3)
     radii = np.hypot(poses[late, 0], poses[late, 1])
     np.testing.assert_allclose(radii, radius, atol=1e-3)
@@ -313,23 +314,23 @@ def test_angular_velocity_limit_keeps_curvature():
     free = FrenetPathFollower(path, FrenetParams(max_angular_velocity=100.0))
     limited = FrenetPathFollower(path, FrenetParams(max_angular_velocity=0.2))
     pose = [1.0, 1.0, 0.5]
-    a, b = free.update(pose), limited.update(pose)
-    assert b.curvature == pytest.approx(a.curvature, rel=1e-12)
+    a, b = free.update(pose, 0.0), limited.update(pose, 0.0)
+    assert b.extras['curvature'] == pytest.approx(a.extras['curvature'], rel=1e-12)
     assert abs(b.angular) == pytest.approx(0.2)
-    assert b.linear == pytest.approx(0.2 / abs(a.curvature))
+    assert b.linear == pytest.approx(0.2 / abs(a.extras['curvature']))
     assert b.linear < a.linear == 0.5
 
 
 def test_finishes_at_end_of_open_path():
     path = PolylinePath([[0.0, 0.0], [2.0, 0.0]])
     follower = FrenetPathFollower(path, FrenetParams())
-    assert not follower.update([1.0, 0.1, 0.0]).finished
-    cmd = follower.update([1.99, 0.0, 0.0])
-    assert cmd.finished and cmd.linear == cmd.angular == cmd.curvature == 0.0
-    assert follower.update([1.0, 0.0, 0.0]).finished  # latched
+    assert not follower.update([1.0, 0.1, 0.0], 0.0).finished
+    cmd = follower.update([1.99, 0.0, 0.0], 0.1)
+    assert cmd.finished and cmd.linear == cmd.angular == cmd.extras['curvature'] == 0.0
+    assert follower.update([1.0, 0.0, 0.0], 0.2).finished  # latched
     follower.reset()
     assert follower.progress == 0.0
-    assert not follower.update([1.0, 0.0, 0.0]).finished
+    assert not follower.update([1.0, 0.0, 0.0], 0.3).finished
 
 
 def test_set_params():
@@ -337,6 +338,12 @@ def test_set_params():
     follower = FrenetPathFollower(path, FrenetParams(curvature_window=0.5))
     follower.set_params(FrenetParams(curvature_window=1.0))
     assert follower.path_curvature(2.0) == pytest.approx(math.pi / 4.0)
+    # By the node's parameter names: 'variant' is the field law.
+    follower.set_gains({'variant': 'nonlinear', 'curvature_window': 0.5})
+    assert follower.params == FrenetParams(law='nonlinear', curvature_window=0.5)
+    assert follower.path_curvature(2.0) == pytest.approx(math.pi / 2.0)
+    with pytest.raises(ValueError, match='no gain'):
+        follower.set_gains({'k4': 1.0})
 
 
 # ---------------------------------------------------------------- bicycle + steering (§9.4.4)
@@ -493,6 +500,6 @@ def test_functions_reject_bad_input(call):
 def test_update_rejects_bad_pose(pose):
     follower = FrenetPathFollower(PolylinePath([[0.0, 0.0], [2.0, 0.0]]), FrenetParams())
     with pytest.raises(ValueError):
-        follower.update(pose)
+        follower.update(pose, 0.0)
     with pytest.raises(ValueError):
         follower.path_curvature(math.nan)

@@ -2,8 +2,9 @@
 
 import math
 
+import numpy as np
 import pytest
-from robotica_ctrl.mobile.open_loop import OpenLoopProfile
+from robotica_ctrl.mobile.open_loop import OpenLoop, OpenLoopProfile
 
 
 def test_ramp_of_ejemplo_4_9_c():
@@ -35,3 +36,19 @@ def test_single_row_is_a_constant_and_the_last_row_is_held():
 def test_bad_profiles_are_refused(times, linear, angular, key):
     with pytest.raises(ValueError, match=key):
         OpenLoopProfile(times, linear, angular)
+
+
+def test_the_law_plays_the_profile_against_time_only():
+    # Ej. 4.8: v = 1 m/s, w = 1 rad/s, whatever the pose; no path, so no errors (NaN).
+    law = OpenLoop(OpenLoopProfile([0.0], [1.0], [1.0]))
+    for t, pose in ((0.0, [1.0, 0.0, 1.57]), (3.0, [math.nan, 0.0, 0.0])):
+        out = law.update(pose, t)
+        assert (out.linear, out.angular, out.finished) == (1.0, 1.0, False)
+        assert math.isnan(out.cross_track) and math.isnan(out.along_track)
+        assert math.isnan(out.heading_error) and np.isnan(out.target_point).all()
+    law.set_gains({'times': [0.0, 2.0], 'linear': [0.0, 1.0], 'angular': [0.0, 0.0]})
+    law.reset()
+    assert law.update([0.0, 0.0, 0.0], 1.0)[:2] == (0.5, 0.0)
+    with pytest.raises(ValueError, match='same length'):
+        law.set_gains({'angular': [0.0]})
+    assert law.profile.angular.tolist() == [0.0, 0.0]   # the old profile is kept

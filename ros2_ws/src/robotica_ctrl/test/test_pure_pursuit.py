@@ -14,8 +14,8 @@ import pytest
 
 from robotica_ctrl.mobile.path import PolylinePath
 from robotica_ctrl.mobile.path_shapes import rounded_rectangle, straight_line
-from robotica_ctrl.mobile.pure_pursuit import (curvature_to_point, PurePursuit, PurePursuitCommand,
-                                               PurePursuitParams)
+from robotica_ctrl.mobile.pure_pursuit import curvature_to_point, PurePursuit, PurePursuitParams
+from robotica_ctrl.mobile.tracker_base import TrackerOutput
 
 
 def simulate(tracker, pose, duration, dt):
@@ -29,7 +29,7 @@ def simulate(tracker, pose, duration, dt):
     pose = np.asarray(pose, dtype=float)
     times, poses, commands = [], [], []
     for k in range(round(duration / dt)):
-        command = tracker.update(pose)
+        command = tracker.update(pose, k * dt)
         times.append(k * dt)
         poses.append(pose)
         commands.append(command)
@@ -104,17 +104,17 @@ def straight_tracker(**params):
 
 
 def test_on_a_straight_path_it_drives_straight():
-    command = straight_tracker().update([1.0, 0.0, 0.0])
-    assert (command.linear, command.angular, command.curvature) == (0.5, 0.0, 0.0)
-    np.testing.assert_array_equal(command.goal_point, [1.5, 0.0])
+    command = straight_tracker().update([1.0, 0.0, 0.0], 0.0)
+    assert (command.linear, command.angular, command.extras['curvature']) == (0.5, 0.0, 0.0)
+    np.testing.assert_array_equal(command.target_point, [1.5, 0.0])
     assert not command.finished
 
 
 def test_lateral_offset_steers_back_by_book_9_5():
     # Robot 0.2 m left of the path: goal (L, -0.2) in base_link, γ = 2 (-0.2) / (L² + 0.2²).
-    command = straight_tracker(lookahead_distance=1.0).update([1.0, 0.2, 0.0])
-    assert command.projection.cross_track == pytest.approx(0.2)
-    assert command.curvature == pytest.approx(-0.4 / 1.04)
+    command = straight_tracker(lookahead_distance=1.0).update([1.0, 0.2, 0.0], 0.0)
+    assert command.cross_track == pytest.approx(0.2)
+    assert command.extras['curvature'] == pytest.approx(-0.4 / 1.04)
     assert command.angular == pytest.approx(0.5 * -0.4 / 1.04)
 
 
@@ -123,8 +123,8 @@ def test_goal_point_is_an_arc_length_ahead_of_the_closest_point():
     path = PolylinePath([[0.0, 0.0], [4.0, 0.0], [4.0, 3.0]])
     tracker = PurePursuit(path, PurePursuitParams(lookahead_distance=1.0))
     for x in np.arange(0.0, 3.6, 0.5):  # progress along, within the search window
-        command = tracker.update([x, 0.1, 0.0])
-    np.testing.assert_allclose(command.goal_point, [4.0, 0.5])
+        command = tracker.update([x, 0.1, 0.0], 0.0)
+    np.testing.assert_allclose(command.target_point, [4.0, 0.5])
 
 
 @pytest.mark.parametrize('radius', [0.5, 2.0, 10.0])
@@ -136,9 +136,9 @@ def test_curvature_is_exact_on_a_circle(radius, direction):
     path = circle_path(radius, direction)
     chord = 2.0 * radius * math.sin(math.pi / 720)
     params = PurePursuitParams(lookahead_distance=25 * chord, max_angular_velocity=100.0)
-    command = PurePursuit(path, params).update([radius, 0.0, direction * 0.5 * math.pi])
-    assert np.linalg.norm(command.goal_point) == pytest.approx(radius, rel=1e-12)
-    assert command.curvature == pytest.approx(direction / radius, rel=1e-9)
+    command = PurePursuit(path, params).update([radius, 0.0, direction * 0.5 * math.pi], 0.0)
+    assert np.linalg.norm(command.target_point) == pytest.approx(radius, rel=1e-12)
+    assert command.extras['curvature'] == pytest.approx(direction / radius, rel=1e-9)
     assert command.angular == pytest.approx(command.linear * direction / radius, rel=1e-9)
 
 
@@ -148,8 +148,8 @@ def test_angular_velocity_limit_keeps_the_curvature():
     path = circle_path(0.2, 1.0)
     chord = 2.0 * 0.2 * math.sin(math.pi / 720)
     params = PurePursuitParams(lookahead_distance=10 * chord, search_window=0.5)
-    command = PurePursuit(path, params).update([0.2, 0.0, 0.5 * math.pi])
-    assert command.curvature == pytest.approx(5.0, rel=1e-9)
+    command = PurePursuit(path, params).update([0.2, 0.0, 0.5 * math.pi], 0.0)
+    assert command.extras['curvature'] == pytest.approx(5.0, rel=1e-9)
     assert command.linear == pytest.approx(0.3, rel=1e-9)
     assert command.angular == pytest.approx(1.5, rel=1e-12)
 
@@ -164,26 +164,26 @@ def test_angular_velocity_limit_keeps_the_curvature():
 def test_approach_slows_down_linearly(x, y, expected_v):
     tracker = straight_tracker()
     for xi in np.arange(0.0, x, 1.0):
-        tracker.update([xi, 0.0, 0.0])
-    command = tracker.update([x, y, 0.0])
+        tracker.update([xi, 0.0, 0.0], 0.0)
+    command = tracker.update([x, y, 0.0], 0.0)
     assert command.linear == pytest.approx(expected_v)
-    np.testing.assert_array_equal(command.goal_point, [min(x + 0.5, 5.0), 0.0])
+    np.testing.assert_array_equal(command.target_point, [min(x + 0.5, 5.0), 0.0])
 
 
 def test_finishes_at_the_end_and_stays_finished_until_reset():
     tracker = straight_tracker()
     for x in np.arange(0.0, 5.0, 1.0):
-        tracker.update([x, 0.0, 0.0])
+        tracker.update([x, 0.0, 0.0], 0.0)
     # Within tolerance along the path but 0.1 m beside its end: not finished yet.
-    command = tracker.update([4.97, 0.1, 0.0])
+    command = tracker.update([4.97, 0.1, 0.0], 0.0)
     assert not command.finished and command.linear == pytest.approx(0.05)
-    command = tracker.update([4.98, 0.01, 0.0])
+    command = tracker.update([4.98, 0.01, 0.0], 0.0)
     assert command.finished
-    assert (command.linear, command.angular, command.curvature) == (0.0, 0.0, 0.0)
-    assert tracker.update([4.0, 0.5, 1.0]).finished
+    assert (command.linear, command.angular, command.extras['curvature']) == (0.0, 0.0, 0.0)
+    assert tracker.update([4.0, 0.5, 1.0], 0.0).finished
     tracker.reset()
     assert tracker.progress == 0.0
-    command = tracker.update([0.0, 0.0, 0.0])
+    command = tracker.update([0.0, 0.0, 0.0], 0.0)
     assert not command.finished and command.linear == 0.5
 
 
@@ -191,34 +191,34 @@ def test_progress_never_falls_back_more_than_the_window():
     tracker = PurePursuit(PolylinePath(straight_line([0.0, 0.0], [10.0, 0.0])),
                           PurePursuitParams(search_window=2.0))
     for x in np.arange(0.0, 8.01, 0.5):
-        tracker.update([x, 0.0, 0.0])
+        tracker.update([x, 0.0, 0.0], 0.0)
     assert tracker.progress == pytest.approx(8.0)
-    command = tracker.update([0.0, 0.0, 0.0])  # teleported back to the start
-    assert command.projection.s == pytest.approx(6.0)
+    command = tracker.update([0.0, 0.0, 0.0], 0.0)  # teleported back to the start
+    np.testing.assert_allclose(command.target_point, [6.5, 0.0])  # from s = 6 m
     assert tracker.progress == pytest.approx(6.0)
 
 
 def test_set_params_changes_the_lookahead_and_keeps_progress():
     tracker = straight_tracker()
-    tracker.update([1.0, 0.0, 0.0])
+    tracker.update([1.0, 0.0, 0.0], 0.0)
     tracker.set_params(PurePursuitParams(lookahead_distance=2.0))
     assert tracker.params.lookahead_distance == 2.0
     assert tracker.progress == pytest.approx(1.0)
-    np.testing.assert_array_equal(tracker.update([1.0, 0.0, 0.0]).goal_point, [3.0, 0.0])
+    np.testing.assert_array_equal(tracker.update([1.0, 0.0, 0.0], 0.0).target_point, [3.0, 0.0])
 
 
 @pytest.mark.parametrize('pose', [[0.0, 0.0, math.nan], [math.inf, 0.0, 0.0], [0.0, 0.0],
                                   [0.0, 0.0, 0.0, 0.0]])
 def test_bad_poses_are_rejected(pose):
     with pytest.raises(ValueError):
-        straight_tracker().update(pose)
+        straight_tracker().update(pose, 0.0)
 
 
 def test_command_is_immutable():
-    command = straight_tracker().update([0.0, 0.0, 0.0])
-    assert isinstance(command, PurePursuitCommand)
+    command = straight_tracker().update([0.0, 0.0, 0.0], 0.0)
+    assert isinstance(command, TrackerOutput)
     with pytest.raises(ValueError):
-        command.goal_point[0] = 1.0
+        command.target_point[0] = 1.0
     with pytest.raises(AttributeError):
         command.linear = 1.0  # type: ignore[misc]
 
@@ -228,14 +228,14 @@ def test_reversing_safeguard_when_facing_backwards(side):
     # Robot at (1, 0.1 side) facing -x. The goal (1.5, 0) is behind it: in base_link
     # x_b = -0.5, y_b = 0.1 side, at D = sqrt(0.26) m. Plain (9.5) would give
     # 2 y_b / D² = ±0.77 1/m; the safeguard turns harder, 2 / D = 3.92 1/m, to the goal's side.
-    command = straight_tracker().update([1.0, 0.1 * side, math.pi])
+    command = straight_tracker().update([1.0, 0.1 * side, math.pi], 0.0)
     distance = math.sqrt(0.5 ** 2 + 0.1 ** 2)
-    assert command.curvature == pytest.approx(side * 2.0 / distance)
-    assert abs(command.curvature) > abs(2.0 * 0.1 / distance ** 2)
+    assert command.extras['curvature'] == pytest.approx(side * 2.0 / distance)
+    assert abs(command.extras['curvature']) > abs(2.0 * 0.1 / distance ** 2)
     assert command.angular == pytest.approx(side * 1.5)  # limited, curvature kept
     # Facing backwards right on the path, the goal is straight behind: turn with 2 / L.
-    command = straight_tracker().update([1.0, 0.0, math.pi])
-    assert abs(command.curvature) == pytest.approx(2.0 / 0.5)
+    command = straight_tracker().update([1.0, 0.0, math.pi], 0.0)
+    assert abs(command.extras['curvature']) == pytest.approx(2.0 / 0.5)
 
 
 def test_reversing_robot_turns_round_and_follows_the_path():
@@ -319,7 +319,7 @@ def test_follows_a_rounded_rectangle_and_finishes_at_its_end():
     sampled = poses[::10, np.newaxis, :2]
     gaps = np.min(np.linalg.norm(sampled - dense[np.newaxis], axis=2), axis=1)
     assert gaps.max() < 0.05
-    assert max(abs(c.projection.cross_track) for c in commands) < 0.05
+    assert max(abs(c.cross_track) for c in commands) < 0.05
 
 
 def test_speed_limit_is_respected_in_closed_loop():
@@ -331,7 +331,7 @@ def test_speed_limit_is_respected_in_closed_loop():
                                       duration=80.0, dt=0.005)
     linear = np.array([c.linear for c in commands])
     angular = np.array([c.angular for c in commands])
-    curvature = np.array([c.curvature for c in commands])
+    curvature = np.array([c.extras['curvature'] for c in commands])
     assert commands[-1].finished
     assert np.all(np.abs(angular) <= 0.3 * (1.0 + 1e-12))
     assert np.all((linear >= 0.0) & (linear <= params.desired_linear_velocity))
@@ -339,4 +339,4 @@ def test_speed_limit_is_respected_in_closed_loop():
     assert np.abs(angular).max() == pytest.approx(0.3)  # the limit was reached ...
     in_corners = curvature > 0.9
     assert linear[in_corners].max() < 0.35  # ... and slowed the robot in the corners
-    assert max(abs(c.projection.cross_track) for c in commands) < 0.05  # same path
+    assert max(abs(c.cross_track) for c in commands) < 0.05  # same path

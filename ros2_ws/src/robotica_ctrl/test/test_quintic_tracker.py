@@ -18,8 +18,8 @@ import pytest
 
 from robotica_ctrl.mobile.path import PolylinePath
 from robotica_ctrl.mobile.quintic_tracker import (
-    path_curvature, quintic_coefficients, quintic_curvature, QuinticTracker,
-    QuinticTrackerCommand, QuinticTrackerParams)
+    path_curvature, quintic_coefficients, quintic_curvature, QuinticTracker, QuinticTrackerParams)
+from robotica_ctrl.mobile.tracker_base import TrackerOutput
 
 
 def boundary_values(c, x_f):
@@ -128,9 +128,9 @@ def test_update_rejects_bad_pose():
     tracker = QuinticTracker(PolylinePath([[0.0, 0.0], [5.0, 0.0]]), QuinticTrackerParams())
     for pose in ([0.0, 0.0], [0.0, math.nan, 0.0]):
         with pytest.raises(ValueError):
-            tracker.update(pose)
+            tracker.update(pose, 0.0)
     with pytest.raises(ValueError):
-        tracker.update([0.0, 0.0, 0.0], current_curvature=math.inf)
+        tracker.update([0.0, 0.0, 0.0], 0.0, current_curvature=math.inf)
 
 
 def test_one_update_by_hand():
@@ -139,15 +139,16 @@ def test_one_update_by_hand():
     path = PolylinePath([[0.0, 0.0], [10.0, 0.0]])
     params = QuinticTrackerParams(lookahead_distance=1.0, desired_linear_velocity=1.0,
                                   max_angular_velocity=10.0, actuator_delay=0.2)
-    command = QuinticTracker(path, params).update([0.0, 0.5, 0.0])
-    assert isinstance(command, QuinticTrackerCommand)
-    np.testing.assert_allclose(command.coefficients, [0, 0, 0, -5.0, 7.5, -3.0], atol=1e-12)
-    np.testing.assert_allclose(command.goal_point, [1.0, 0.0])
+    command = QuinticTracker(path, params).update([0.0, 0.5, 0.0], 0.0)
+    assert isinstance(command, TrackerOutput)
+    np.testing.assert_allclose(command.extras['coefficients'], [0, 0, 0, -5.0, 7.5, -3.0],
+                               atol=1e-12)
+    np.testing.assert_allclose(command.target_point, [1.0, 0.0])
     x = 0.2  # v τ
     d1 = -0.5 * (30 * x**2 - 60 * x**3 + 30 * x**4)
     d2 = -0.5 * (60 * x - 180 * x**2 + 120 * x**3)
-    assert command.curvature == pytest.approx(d2 / (1 + d1 * d1) ** 1.5)
-    assert command.angular == pytest.approx(command.linear * command.curvature)
+    assert command.extras['curvature'] == pytest.approx(d2 / (1 + d1 * d1) ** 1.5)
+    assert command.angular == pytest.approx(command.linear * command.extras['curvature'])
     assert command.cross_track == pytest.approx(0.5)
     assert not command.finished
 
@@ -155,16 +156,16 @@ def test_one_update_by_hand():
 def test_angular_velocity_limit_keeps_the_curvature():
     path = PolylinePath([[0.0, 0.0], [10.0, 0.0]])
     params = QuinticTrackerParams(max_angular_velocity=0.1, actuator_delay=0.5)
-    command = QuinticTracker(path, params).update([0.0, 0.8, 0.0])
+    command = QuinticTracker(path, params).update([0.0, 0.8, 0.0], 0.0)
     assert abs(command.angular) == pytest.approx(0.1)
-    assert command.angular == pytest.approx(command.linear * command.curvature)
+    assert command.angular == pytest.approx(command.linear * command.extras['curvature'])
 
 
 def test_goal_behind_uses_the_pure_pursuit_fallback():
     path = PolylinePath([[0.0, 0.0], [10.0, 0.0]])
-    command = QuinticTracker(path, QuinticTrackerParams()).update([0.0, 0.0, math.pi])
-    assert command.coefficients is None
-    assert abs(command.curvature) == pytest.approx(2.0)  # 2 / L with L = 1
+    command = QuinticTracker(path, QuinticTrackerParams()).update([0.0, 0.0, math.pi], 0.0)
+    assert command.extras['coefficients'] is None
+    assert abs(command.extras['curvature']) == pytest.approx(2.0)  # 2 / L with L = 1
 
 
 def simulate(tracker, pose, duration, dt, lag=None):
@@ -177,15 +178,15 @@ def simulate(tracker, pose, duration, dt, lag=None):
     pose = np.asarray(pose, dtype=float)
     gamma = 0.0
     poses = []
-    for _ in range(round(duration / dt)):
-        command = tracker.update(pose, current_curvature=gamma if lag else None)
+    for k in range(round(duration / dt)):
+        command = tracker.update(pose, k * dt, current_curvature=gamma if lag else None)
         poses.append(pose)
         if command.finished:
             break
         if lag:
-            gamma += dt * (command.curvature - gamma) / lag
+            gamma += dt * (command.extras['curvature'] - gamma) / lag
         else:
-            gamma = command.curvature
+            gamma = command.extras['curvature']
         v = command.linear
         heading = pose[2] + 0.5 * dt * v * gamma
         pose = pose + dt * np.array([v * math.cos(heading), v * math.sin(heading), v * gamma])
@@ -226,7 +227,7 @@ def test_stops_at_the_end_of_the_path():
     tracker = QuinticTracker(path, params)
     poses = simulate(tracker, [0.0, 0.2, 0.0], 10.0, 0.02)
     assert np.hypot(*(poses[-1, :2] - [3.0, 0.0])) <= 0.06
-    command = tracker.update(poses[-1])
+    command = tracker.update(poses[-1], 0.0)
     assert command.finished and command.linear == 0.0 and command.angular == 0.0
     tracker.reset()
     assert tracker.progress == 0.0

@@ -1,18 +1,18 @@
 """
-Tests of robotica_ctrl.mobile.tracking_laws: every law behind one interface.
+Tests of robotica_ctrl.mobile.tracking_laws: every law built by name, behind one interface.
 
 References: a unicycle (and a bicycle with the steering lag (9.9)) integrated here; Ejemplo
 9.1's finding (book §9.3.1) that the actuator lag accentuates the oscillation of a small
-look-ahead L; a circle's reference posture in closed form.
+look-ahead L; the ramp of Ejemplo 4.9 (c) worked by hand.
 """
 import math
 
 import numpy as np
 import pytest
 from robotica_ctrl.mobile.path import PolylinePath
-from robotica_ctrl.mobile.path_shapes import straight_line, unicycle_trajectory
-from robotica_ctrl.mobile.tracking_laws import (law_defaults, LAW_PARAMETERS, LAWS, make_law,
-                                                TimedPath)
+from robotica_ctrl.mobile.path_shapes import straight_line
+from robotica_ctrl.mobile.tracker_base import TrackerOutput
+from robotica_ctrl.mobile.tracking_laws import law_defaults, LAW_PARAMETERS, LAWS, make_law
 
 STEP = 0.01   # [s]
 
@@ -73,41 +73,6 @@ def test_ejemplo_9_1_steering_lag_accentuates_oscillation():
     assert crossings[0.5, 0.3] > crossings[0.0, 0.3]
 
 
-def test_timed_reference_on_an_arc_is_exact():
-    # v = 0.2 m/s, w = 0.3 rad/s from (0, 0, pi/2): the circle of radius 2/3 m about (-2/3, 0).
-    samples = unicycle_trajectory([0.0, 0.0, math.pi / 2], [[0.2, 0.3, 10.0]], step=0.01)
-    path = PolylinePath(samples[:, :2])
-    reference = TimedPath(path, samples[:, 2]).reference(4.005)
-    theta = math.pi / 2 + 0.3 * 4.005
-    assert reference.x == pytest.approx(-2 / 3 + 2 / 3 * math.cos(0.3 * 4.005), abs=1e-6)
-    assert reference.y == pytest.approx(2 / 3 * math.sin(0.3 * 4.005), abs=1e-6)
-    assert reference.theta == pytest.approx(theta, abs=1e-5)
-    assert reference.v == pytest.approx(0.2, rel=1e-4)
-    assert reference.omega == pytest.approx(0.3, rel=1e-3)
-    after = TimedPath(path, samples[:, 2]).reference(11.0)
-    assert (after.v, after.omega) == (0.0, 0.0)
-
-
-def test_untimed_reference_starts_at_the_first_update():
-    path = PolylinePath(straight_line([0.0, 0.0], [4.0, 0.0]))
-    law = make_law('trajectory_tracking', path, {'reference_speed': 0.5})
-    first = law.update([0.0, 0.0, 0.0], 100.0)
-    later = law.update([0.0, 0.0, 0.0], 102.0)
-    assert first.target_point.tolist() == [0.0, 0.0]
-    assert later.target_point.tolist() == pytest.approx([1.0, 0.0])
-    assert later.along_track == pytest.approx(1.0)   # the robot lags 1 m behind it
-
-
-def test_gpc_holds_its_command_between_samples():
-    path = PolylinePath(straight_line([0.0, 0.0], [20.0, 0.0]))
-    law = make_law('gpc', path, {'sample_time': 0.1})
-    first = law.update([0.0, 0.5, 0.0], 0.0)
-    held = law.update([0.0, 0.4, 0.0], 0.05)
-    fresh = law.update([0.0, 0.4, 0.0], 0.1)
-    assert held.angular == first.angular and held.cross_track == pytest.approx(0.4)
-    assert fresh.angular != first.angular
-
-
 def test_bad_names_and_gains_are_refused():
     path = PolylinePath(straight_line([0.0, 0.0], [4.0, 0.0]))
     with pytest.raises(ValueError, match='law must be one of'):
@@ -124,12 +89,49 @@ def test_bad_names_and_gains_are_refused():
 
 
 def test_parameter_specs_cover_every_law_with_valid_defaults():
-    assert set(LAW_PARAMETERS) == set(LAWS)
-    for law in LAWS:
+    assert set(LAW_PARAMETERS) == {*LAWS, 'open_loop'}
+    for law in LAW_PARAMETERS:
         for name, spec in LAW_PARAMETERS[law].items():
             assert spec.description
             if spec.choices:
                 assert spec.default in spec.choices
+            elif isinstance(spec.default, tuple):   # a list of numbers: no range
+                assert spec.low is None and spec.high is None
             else:
                 assert spec.low <= spec.default <= spec.high, (law, name)
         make_law(law, PolylinePath(straight_line([0.0, 0.0], [4.0, 0.0])), law_defaults(law))
+
+
+@pytest.mark.parametrize('law', LAW_PARAMETERS)
+def test_every_law_answers_the_one_output_and_takes_its_gains(law):
+    path = PolylinePath(straight_line([0.0, 0.0], [4.0, 0.0]))
+    tracker = make_law(law, path)
+    out = tracker.update([0.0, 0.1, 0.0], 0.0, 0.5)
+    assert isinstance(out, TrackerOutput) and out.target_point.shape == (2,)
+    with pytest.raises(ValueError):
+        out.target_point[0] = 1.0
+    with pytest.raises(AttributeError):
+        out.linear = 1.0  # type: ignore[misc]
+    tracker.set_gains(law_defaults(law))   # every gain by its parameter's name
+    tracker.reset()
+    assert tracker.update([0.0, 0.1, 0.0], 0.0, 0.5)[:3] == pytest.approx(out[:3], nan_ok=True)
+
+
+def test_open_loop_is_a_law_of_the_registry():
+    # Ej. 4.9 (c): c = 0.25 m, b = 1 m, left wheel 1 rad/s, right 0.1 t rad/s:
+    # v = c (0.1 t + 1) / 2, w = c (0.1 t - 1) / b; at t = 7.5 s: 0.21875 m/s, -0.0625 rad/s.
+    path = PolylinePath(straight_line([0.0, 0.0], [4.0, 0.0]))
+    law = make_law('open_loop', path, {'times': [0.0, 30.0], 'linear': [0.125, 0.5],
+                                       'angular': [-0.25, 0.5]})
+    out = law.update([9.0, -9.0, 3.0], 7.5)   # the pose is not read
+    assert (out.linear, out.angular) == pytest.approx((0.21875, -0.0625), abs=1e-15)
+    assert math.isnan(out.cross_track) and math.isnan(out.heading_error)
+    assert np.isnan(out.target_point).all() and not out.finished
+    law.set_gains({'linear': [0.0, 0.0]})
+    assert law.update([0.0, 0.0, 0.0], 7.5).linear == 0.0
+    with pytest.raises(ValueError, match='same length'):
+        law.set_gains({'times': [0.0]})
+    assert law_defaults('open_loop') == {'times': (0.0,), 'linear': (0.0,), 'angular': (0.0,)}
+    with pytest.raises(ValueError, match='increase'):
+        make_law('open_loop', path, {'times': [0.0, 0.0], 'linear': [1.0, 1.0],
+                                     'angular': [0.0, 0.0]})

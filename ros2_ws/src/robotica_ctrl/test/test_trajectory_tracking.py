@@ -6,10 +6,11 @@ own heading convention (φ from the y axis) and worked by hand; the error dynami
 (9.64)-(9.67) written here and checked against finite differences of the unicycle; the
 linearised closed loop (9.68) + (9.70) / (9.78) and its characteristic polynomials
 (9.72) / (9.74) written here, whose roots are compared with the eigenvalues of a
-finite-difference Jacobian of the tracker's closed loop; scipy's ``expm`` for the small-error
+finite-difference Jacobian of the law's closed loop; scipy's ``expm`` for the small-error
 response; and the reference values of Ejemplos 9.3 and 9.4 (seed catalogue §7.10, computed
 there by integrating the exact error dynamics). Closed loops integrate the unicycle
-x' = v cos θ, y' = v sin θ, θ' = ω and the reference (9.59) with ``rk4_step``.
+x' = v cos θ, y' = v sin θ, θ' = ω and the reference (9.59) with ``rk4_step``; the
+reference posture along a circle is checked in closed form.
 """
 
 import dataclasses
@@ -19,9 +20,11 @@ import math
 from hypothesis import given, settings, strategies as st
 import numpy as np
 import pytest
+from robotica_ctrl.mobile.path import PolylinePath
+from robotica_ctrl.mobile.path_shapes import straight_line, unicycle_trajectory
 from robotica_ctrl.mobile.trajectory_tracking import (
-    design_linear_gains, LAWS, posture_error, PostureReference, TrackingCommand,
-    TrajectoryTracker, TrajectoryTrackingParams)
+    design_linear_gains, LAWS, posture_error, PostureReference, TimedPath, tracking_command,
+    tracking_gains, TrackingCommand, TrajectoryTracker, TrajectoryTrackingParams)
 from robotica_kin.angles import heading_from_book, heading_to_book, wrap_to_pi
 from robotica_kin.integrators import rk4_step
 from scipy.linalg import expm
@@ -29,20 +32,17 @@ from scipy.linalg import expm
 NO_LIMITS = {'max_linear': 1e3, 'max_angular': 1e3}
 
 
-def tracker(**params):
-    return TrajectoryTracker(TrajectoryTrackingParams(**params))
-
-
-def unicycle_and_reference(t, state, tracker, v_ref, omega_ref):
-    """Return d/dt of (robot pose, reference pose) under the tracker's command."""
+def unicycle_and_reference(t, state, params, v_ref, omega_ref):
+    """Return d/dt of (robot pose, reference pose) under the law's command."""
     x, y, theta, x_r, y_r, theta_r = state
-    command = tracker.update(state[:3], PostureReference(x_r, y_r, theta_r, v_ref, omega_ref))
+    command = tracking_command(state[:3], PostureReference(x_r, y_r, theta_r, v_ref, omega_ref),
+                               params)
     return [command.linear * math.cos(theta), command.linear * math.sin(theta),
             command.angular,
             v_ref * math.cos(theta_r), v_ref * math.sin(theta_r), omega_ref]
 
 
-def simulate(tracker, pose, reference_pose, velocities, duration, dt):
+def simulate(params, pose, reference_pose, velocities, duration, dt):
     """
     Integrate robot and reference for ``duration`` [s] with RK4 steps of ``dt`` [s].
 
@@ -54,7 +54,7 @@ def simulate(tracker, pose, reference_pose, velocities, duration, dt):
     states = [state]
     for k in range(steps):
         t = k * dt
-        state = rk4_step(unicycle_and_reference, t, state, dt, tracker,
+        state = rk4_step(unicycle_and_reference, t, state, dt, params,
                          *velocities(t + 1e-9))
         states.append(state)
     states = np.array(states)
@@ -208,7 +208,8 @@ def test_design_linear_gains_rejects_bad_input(args, match):
 @pytest.mark.parametrize('pose', [[0.0, 0.0], [0.0, 0.0, math.nan], [math.inf, 0.0, 0.0]])
 def test_update_rejects_bad_poses(pose):
     with pytest.raises(ValueError):
-        tracker().update(pose, PostureReference(0.0, 0.0, 0.0, 0.5, 0.0))
+        tracking_command(pose, PostureReference(0.0, 0.0, 0.0, 0.5, 0.0),
+                         TrajectoryTrackingParams())
 
 
 # --- the laws, term by term --------------------------------------------------------------
@@ -216,7 +217,7 @@ def test_update_rejects_bad_poses(pose):
 def test_on_the_reference_the_command_is_the_reference():
     reference = PostureReference(1.0, -2.0, 0.7, 0.4, -0.3)
     for law in LAWS:
-        command = tracker(law=law).update(reference.pose, reference)
+        command = tracking_command(reference.pose, reference, TrajectoryTrackingParams(law=law))
         assert (command.linear, command.angular) == (0.4, -0.3)
         np.testing.assert_array_equal(command.error, [0.0, 0.0, 0.0])
         assert not command.saturated
@@ -230,20 +231,21 @@ def test_laws_by_hand(v_ref):
     pose = [0.0, 0.0, 0.0]
     sgn = math.copysign(1.0, v_ref)
     # Linear (9.70): v = v_r cos e3 + k1 e1, ω = ω_r + k2 sgn(v_r) e2 + k3 e3.
-    command = tracker(law='linear', k1=1.0, k2=2.0, k3=4.0, **NO_LIMITS).update(pose, reference)
+    command = tracking_command(pose, reference, TrajectoryTrackingParams(
+        law='linear', k1=1.0, k2=2.0, k3=4.0, **NO_LIMITS))
     assert command.linear == pytest.approx(v_ref * math.cos(0.2) + 0.1)
     assert command.angular == pytest.approx(0.3 + 2.0 * sgn * 0.05 + 4.0 * 0.2)
     assert command.gains == (1.0, 2.0, 4.0)
     # Scheduled (9.77) with δ = 0.5, β = 3.64: b = sqrt(0.09 + 3.64 · 0.25) = 1,
     # k1 = k3 = 2 δ b = 1, k2 = β |v_r| = 1.82.
-    command = tracker(law='scheduled', delta=0.5, beta=3.64, **NO_LIMITS).update(
-        pose, reference)
+    command = tracking_command(pose, reference, TrajectoryTrackingParams(
+        law='scheduled', delta=0.5, beta=3.64, **NO_LIMITS))
     np.testing.assert_allclose(command.gains, (1.0, 1.82, 1.0))
     assert command.linear == pytest.approx(v_ref * math.cos(0.2) + 0.1)
     assert command.angular == pytest.approx(0.3 + 1.82 * sgn * 0.05 + 0.2)
     # Nonlinear (9.78), same k1 = k3 = 1 (9.82), k2 = 19: ω = ω_r + k2 v_r (sin e3/e3) e2 + k3 e3.
-    command = tracker(law='nonlinear', delta=0.5, beta=3.64, k2=19.0,
-                      **NO_LIMITS).update(pose, reference)
+    command = tracking_command(pose, reference, TrajectoryTrackingParams(
+        law='nonlinear', delta=0.5, beta=3.64, k2=19.0, **NO_LIMITS))
     np.testing.assert_allclose(command.gains, (1.0, 19.0, 1.0))
     assert command.linear == pytest.approx(v_ref * math.cos(0.2) + 0.1)
     assert command.angular == pytest.approx(
@@ -252,8 +254,8 @@ def test_laws_by_hand(v_ref):
 
 
 def test_nonlinear_law_is_regular_at_zero_heading_error():
-    command = tracker(**NO_LIMITS).update([0.0, 0.0, 0.0],
-                                          PostureReference(0.0, 0.1, 0.0, 0.5, 0.0))
+    command = tracking_command([0.0, 0.0, 0.0], PostureReference(0.0, 0.1, 0.0, 0.5, 0.0),
+                               TrajectoryTrackingParams(**NO_LIMITS))
     k1, k2, k3 = command.gains
     assert command.angular == pytest.approx(k2 * 0.5 * 0.1)  # sin e3 / e3 -> 1
 
@@ -262,7 +264,8 @@ def test_scheduled_and_nonlinear_do_nothing_for_a_reference_at_rest():
     # (9.77): with v_r = ω_r = 0 the gains vanish (not controllable, §9.4.2).
     reference = PostureReference(1.0, 1.0, 1.0, 0.0, 0.0)
     for law in ('scheduled', 'nonlinear'):
-        command = tracker(law=law).update([0.0, 0.0, 0.0], reference)
+        command = tracking_command([0.0, 0.0, 0.0], reference,
+                                   TrajectoryTrackingParams(law=law))
         assert (command.linear, command.angular) == (0.0, 0.0)
         assert command.gains[0] == command.gains[2] == 0.0
 
@@ -270,25 +273,17 @@ def test_scheduled_and_nonlinear_do_nothing_for_a_reference_at_rest():
 @pytest.mark.parametrize('side', [1.0, -1.0])
 def test_commands_are_clipped_to_the_limits(side):
     params = TrajectoryTrackingParams(law='linear', max_linear=0.3, max_angular=0.4)
-    command = TrajectoryTracker(params).update(
-        [0.0, 0.0, 0.0], PostureReference(side * 2.0, side * 1.0, 0.0, side * 0.2, 0.0))
+    command = tracking_command(
+        [0.0, 0.0, 0.0], PostureReference(side * 2.0, side * 1.0, 0.0, side * 0.2, 0.0), params)
     assert command.linear == side * 0.3
     assert command.angular == 0.4  # ω = k2 sgn(v_r) e2 = 19 · 1 > 0 either way
     assert command.saturated
     np.testing.assert_allclose(command.error, [side * 2.0, side * 1.0, 0.0])
 
 
-def test_set_params_switches_the_law():
-    tr = tracker(law='linear', **NO_LIMITS)
-    reference = PostureReference(0.0, 0.1, 0.0, 0.5, 0.0)
-    assert tr.update([0.0, 0.0, 0.0], reference).angular == pytest.approx(19.0 * 0.1)
-    tr.set_params(TrajectoryTrackingParams(law='scheduled', **NO_LIMITS))
-    assert tr.params.law == 'scheduled'
-    assert tr.update([0.0, 0.0, 0.0], reference).angular == pytest.approx(13.75 * 0.5 * 0.1)
-
-
 def test_command_is_immutable():
-    command = tracker().update([0.0, 0.0, 0.0], PostureReference(0.1, 0.0, 0.0, 0.5, 0.0))
+    command = tracking_command([0.0, 0.0, 0.0], PostureReference(0.1, 0.0, 0.0, 0.5, 0.0),
+                               TrajectoryTrackingParams())
     assert isinstance(command, TrackingCommand)
     with pytest.raises(ValueError):
         command.error[0] = 1.0
@@ -298,9 +293,9 @@ def test_command_is_immutable():
 
 # --- poles of the linearised closed loop -------------------------------------------------
 
-def closed_loop_jacobian(tr, v_ref, omega_ref, h=1e-6):
+def closed_loop_jacobian(params, v_ref, omega_ref, h=1e-6):
     """
-    Finite-difference Jacobian at e = 0 of e' = F(e) with the tracker's command.
+    Finite-difference Jacobian at e = 0 of e' = F(e) with the law's command.
 
     The robot pose that has error e to a reference at the origin heading +x is built by
     inverting (9.63); e' is (9.64)-(9.67).
@@ -311,7 +306,7 @@ def closed_loop_jacobian(tr, v_ref, omega_ref, h=1e-6):
         theta = -error[2]
         c, s = math.cos(theta), math.sin(theta)
         pose = [-(c * error[0] - s * error[1]), -(s * error[0] + c * error[1]), theta]
-        command = tr.update(pose, reference)
+        command = tracking_command(pose, reference, params)
         assert not command.saturated
         np.testing.assert_allclose(command.error, error, atol=1e-14)
         return np.append(error_rate(error, command.linear, command.angular, v_ref),
@@ -335,10 +330,10 @@ REFERENCES = [(0.5, 0.0), (0.2, 0.3), (1.0, -0.8), (-0.4, 0.5), (0.1, 0.2)]
 def test_linear_law_with_designed_gains_has_the_design_poles(v_ref, omega_ref, delta, b):
     # (9.74)-(9.75): poles -2δb and -δb ± b sqrt(δ² - 1).
     k1, k2, k3 = design_linear_gains(delta, b, v_ref, omega_ref)
-    tr = tracker(law='linear', k1=k1, k2=k2, k3=k3, **NO_LIMITS)
+    params = TrajectoryTrackingParams(law='linear', k1=k1, k2=k2, k3=k3, **NO_LIMITS)
     pair = b * np.sqrt(complex(delta ** 2 - 1.0))
     expected = [-2.0 * delta * b, -delta * b + pair, -delta * b - pair]
-    assert_same_roots(np.linalg.eigvals(closed_loop_jacobian(tr, v_ref, omega_ref)), expected)
+    assert_same_roots(np.linalg.eigvals(closed_loop_jacobian(params, v_ref, omega_ref)), expected)
 
 
 @pytest.mark.parametrize(('v_ref', 'omega_ref'), REFERENCES + [(0.0, 0.4)])
@@ -347,10 +342,10 @@ def test_linear_law_has_the_roots_of_9_72(v_ref, omega_ref, gains):
     # (9.72) expanded: s³ + (k1 + k3) s² + (k1 k3 + k2 |v_r| + ω_r²) s
     #                  + k1 k2 |v_r| + k3 ω_r².
     k1, k2, k3 = gains
-    tr = tracker(law='linear', k1=k1, k2=k2, k3=k3, **NO_LIMITS)
+    params = TrajectoryTrackingParams(law='linear', k1=k1, k2=k2, k3=k3, **NO_LIMITS)
     w2, kv = omega_ref ** 2, k2 * abs(v_ref)
     roots = np.roots([1.0, k1 + k3, k1 * k3 + kv + w2, k1 * kv + k3 * w2])
-    jacobian = closed_loop_jacobian(tr, v_ref, omega_ref)
+    jacobian = closed_loop_jacobian(params, v_ref, omega_ref)
     assert_same_roots(np.linalg.eigvals(jacobian), roots)
     # and the matrix itself is (9.68) closed by (9.70).
     expected = [[-k1, omega_ref, 0.0], [-omega_ref, 0.0, v_ref],
@@ -362,11 +357,11 @@ def test_linear_law_has_the_roots_of_9_72(v_ref, omega_ref, gains):
 @pytest.mark.parametrize(('delta', 'beta'), [(0.9, 13.75), (0.5, 2.0), (1.3, 40.0)])
 def test_scheduled_law_keeps_the_design_poles_at_every_speed(v_ref, omega_ref, delta, beta):
     # (9.76)-(9.77): b = sqrt(ω_r² + β v_r²); poles -2δb and -δb ± b sqrt(δ² - 1).
-    tr = tracker(law='scheduled', delta=delta, beta=beta, **NO_LIMITS)
+    params = TrajectoryTrackingParams(law='scheduled', delta=delta, beta=beta, **NO_LIMITS)
     b = math.sqrt(omega_ref ** 2 + beta * v_ref ** 2)
     pair = b * np.sqrt(complex(delta ** 2 - 1.0))
     expected = [-2.0 * delta * b, -delta * b + pair, -delta * b - pair]
-    assert_same_roots(np.linalg.eigvals(closed_loop_jacobian(tr, v_ref, omega_ref)), expected)
+    assert_same_roots(np.linalg.eigvals(closed_loop_jacobian(params, v_ref, omega_ref)), expected)
 
 
 @pytest.mark.parametrize(('v_ref', 'omega_ref'), REFERENCES)
@@ -375,10 +370,11 @@ def test_nonlinear_law_linearises_to_its_poles(v_ref, omega_ref, delta, beta, k2
     # (9.78) about e = 0 with k1 = k3 = 2δ sqrt(ω_r² + β v_r²) (9.82): (9.72) with
     # k2 sgn(v_r) -> k2 v_r becomes (s + k1)(s² + k1 s + k2 v_r² + ω_r²); with k2 = β it is
     # the scheduled law's design (s + 2δb)(s² + 2δbs + b²).
-    tr = tracker(law='nonlinear', delta=delta, beta=beta, k2=k2, **NO_LIMITS)
+    params = TrajectoryTrackingParams(law='nonlinear', delta=delta, beta=beta, k2=k2,
+                                      **NO_LIMITS)
     k1 = 2.0 * delta * math.sqrt(omega_ref ** 2 + beta * v_ref ** 2)
     roots = np.append(np.roots([1.0, k1, k2 * v_ref ** 2 + omega_ref ** 2]), -k1)
-    assert_same_roots(np.linalg.eigvals(closed_loop_jacobian(tr, v_ref, omega_ref)), roots)
+    assert_same_roots(np.linalg.eigvals(closed_loop_jacobian(params, v_ref, omega_ref)), roots)
 
 
 # --- closed loop on the unicycle ---------------------------------------------------------
@@ -394,8 +390,8 @@ def lyapunov(error, k2):
 def test_converges_from_an_initial_offset(law, v_ref, omega_ref):
     # Reference from the origin heading +x; robot 0.5 m behind, 0.4 m to the right, turned
     # 0.4 rad: on the straight line, the circle of radius 1 m, and backwards. No limits.
-    tr = tracker(law=law, **NO_LIMITS)
-    times, poses, references = simulate(tr, [-0.5, -0.4, 0.4], [0.0, 0.0, 0.0],
+    params = TrajectoryTrackingParams(law=law, **NO_LIMITS)
+    times, poses, references = simulate(params, [-0.5, -0.4, 0.4], [0.0, 0.0, 0.0],
                                         lambda t: (v_ref, omega_ref), duration=15.0, dt=0.02)
     error = errors(poses, references)
     norm = np.linalg.norm(error, axis=1)
@@ -408,7 +404,7 @@ def test_converges_from_an_initial_offset(law, v_ref, omega_ref):
         assert math.dist(poses[-1, :2], (0.0, 1.0)) == pytest.approx(1.0, abs=1e-3)
     if law == 'nonlinear':
         # (9.81): V' = -k1 k2 e1² - k3 e3² <= 0 along the solution.
-        v = lyapunov(error, tr.params.k2)
+        v = lyapunov(error, params.k2)
         assert np.all(np.diff(v) <= 1e-9 * v[0])
 
 
@@ -417,15 +413,15 @@ def test_converges_from_an_initial_offset(law, v_ref, omega_ref):
 def test_small_errors_follow_the_linearised_closed_loop(law, v_ref, omega_ref):
     # A 0.1 mm / 1e-4 rad offset evolves as expm(A t) e0, with A from (9.68) closed by (9.70)
     # (k2 sgn v_r), (9.77) or (9.78) (k2 v_r): the decay rates are the designed ones.
-    tr = tracker(law=law, **NO_LIMITS)
-    k1, k2, k3 = tr.gains(v_ref, omega_ref)
+    params = TrajectoryTrackingParams(law=law, **NO_LIMITS)
+    k1, k2, k3 = tracking_gains(params, v_ref, omega_ref)
     lateral = k2 * v_ref if law == 'nonlinear' else k2 * np.sign(v_ref)
     a = np.array([[-k1, omega_ref, 0.0], [-omega_ref, 0.0, v_ref], [0.0, -lateral, -k3]])
     e0 = np.array([1e-4, -1e-4, 1e-4])
     theta = -e0[2]
     c, s = math.cos(theta), math.sin(theta)
     pose = [-(c * e0[0] - s * e0[1]), -(s * e0[0] + c * e0[1]), theta]
-    times, poses, references = simulate(tr, pose, [0.0, 0.0, 0.0],
+    times, poses, references = simulate(params, pose, [0.0, 0.0, 0.0],
                                         lambda t: (v_ref, omega_ref), duration=6.0, dt=0.01)
     error = errors(poses, references)
     np.testing.assert_allclose(error[0], e0, atol=1e-15)
@@ -438,12 +434,12 @@ def test_converges_with_the_default_limits_active(law):
     # 2 m behind and 1 m to the left of a circle of radius 2 m: the first commands are
     # clipped to 1 m/s, 1.5 rad/s, yet the robot catches up with the reference.
     v_ref, omega_ref = 0.4, 0.2
-    tr = tracker(law=law)
+    params = TrajectoryTrackingParams(law=law)
     reference = PostureReference(0.0, 0.0, 0.0, v_ref, omega_ref)
-    assert tr.update([-2.0, 1.0, -0.5], reference).saturated
-    times, poses, references = simulate(tr, [-2.0, 1.0, -0.5], [0.0, 0.0, 0.0],
+    assert tracking_command([-2.0, 1.0, -0.5], reference, params).saturated
+    times, poses, references = simulate(params, [-2.0, 1.0, -0.5], [0.0, 0.0, 0.0],
                                         lambda t: (v_ref, omega_ref), duration=30.0, dt=0.02)
-    commands = [tr.update(p, PostureReference(*r, v_ref, omega_ref))
+    commands = [tracking_command(p, PostureReference(*r, v_ref, omega_ref), params)
                 for p, r in zip(poses, references)]
     assert max(abs(c.linear) for c in commands) <= 1.0
     assert max(abs(c.angular) for c in commands) <= 1.5
@@ -461,11 +457,11 @@ def ejemplo_velocities(t):
 @functools.lru_cache(maxsize=None)
 def run_ejemplo(**params):
     """Robot from (1, 0.5), φ = π/6; reference from (0, 0), φ_r = 0; 30 s (cached)."""
-    tr = tracker(**params, **NO_LIMITS)
+    law = TrajectoryTrackingParams(**params, **NO_LIMITS)
     times, poses, references = simulate(
-        tr, [1.0, 0.5, heading_from_book(math.pi / 6.0)], [0.0, 0.0, heading_from_book(0.0)],
+        law, [1.0, 0.5, heading_from_book(math.pi / 6.0)], [0.0, 0.0, heading_from_book(0.0)],
         ejemplo_velocities, duration=30.0, dt=0.01)
-    assert not any(tr.update(p, PostureReference(*r, *ejemplo_velocities(t))).saturated
+    assert not any(tracking_command(p, PostureReference(*r, *ejemplo_velocities(t)), law).saturated
                    for t, p, r in zip(times[::10], poses[::10], references[::10]))
     return times, references, errors(poses, references)
 
@@ -505,3 +501,61 @@ def test_ejemplo_9_4_nonlinear():
     np.testing.assert_allclose(at(times, error, 5.0), [0.0045, 0.034, -0.203], atol=1e-3)
     np.testing.assert_allclose(at(times, error, 10.0), [-0.0004, -0.0011, 0.0047], atol=1e-4)
     assert np.abs(error[times >= 20.0]).max() < 1e-5
+
+
+# --- the tracker along a path in time ----------------------------------------------------
+
+def test_timed_reference_on_an_arc_is_exact():
+    # v = 0.2 m/s, w = 0.3 rad/s from (0, 0, pi/2): the circle of radius 2/3 m about (-2/3, 0).
+    samples = unicycle_trajectory([0.0, 0.0, math.pi / 2], [[0.2, 0.3, 10.0]], step=0.01)
+    path = PolylinePath(samples[:, :2])
+    reference = TimedPath(path, samples[:, 2]).reference(4.005)
+    theta = math.pi / 2 + 0.3 * 4.005
+    assert reference.x == pytest.approx(-2 / 3 + 2 / 3 * math.cos(0.3 * 4.005), abs=1e-6)
+    assert reference.y == pytest.approx(2 / 3 * math.sin(0.3 * 4.005), abs=1e-6)
+    assert reference.theta == pytest.approx(theta, abs=1e-5)
+    assert reference.v == pytest.approx(0.2, rel=1e-4)
+    assert reference.omega == pytest.approx(0.3, rel=1e-3)
+    after = TimedPath(path, samples[:, 2]).reference(11.0)
+    assert (after.v, after.omega) == (0.0, 0.0)
+
+
+def test_untimed_reference_starts_at_the_first_update():
+    path = PolylinePath(straight_line([0.0, 0.0], [4.0, 0.0]))
+    tracker = TrajectoryTracker(path, TrajectoryTrackingParams(reference_speed=0.5))
+    first = tracker.update([0.0, 0.0, 0.0], 100.0)
+    later = tracker.update([0.0, 0.0, 0.0], 102.0)
+    assert first.target_point.tolist() == [0.0, 0.0]
+    assert later.target_point.tolist() == pytest.approx([1.0, 0.0])
+    assert later.along_track == pytest.approx(1.0)   # the robot lags 1 m behind it
+    command = tracking_command([0.0, 0.0, 0.0], PostureReference(1.0, 0.0, 0.0, 0.5, 0.0),
+                               TrajectoryTrackingParams())
+    assert (later.linear, later.angular) == (command.linear, command.angular)
+    np.testing.assert_array_equal(later.extras['error'], command.error)
+    assert later.extras['gains'] == command.gains
+
+
+def test_finishes_once_reference_and_robot_are_at_the_end_until_reset():
+    path = PolylinePath(straight_line([0.0, 0.0], [2.0, 0.0]))
+    tracker = TrajectoryTracker(path, TrajectoryTrackingParams(reference_speed=1.0))
+    tracker.update([0.0, 0.0, 0.0], 0.0)
+    assert not tracker.update([1.5, 0.0, 0.0], 3.0).finished   # reference at its end, robot not
+    out = tracker.update([1.97, 0.01, 0.0], 3.1)
+    assert out.finished and (out.linear, out.angular) == (0.0, 0.0)
+    assert tracker.update([0.0, 0.0, 0.0], 3.2).finished
+    tracker.reset()
+    assert not tracker.update([0.0, 0.0, 0.0], 3.3).finished   # a new reference from here
+    with pytest.raises(ValueError, match='time'):
+        tracker.update([0.0, 0.0, 0.0], math.nan)
+
+
+def test_set_gains_switches_the_variant():
+    path = PolylinePath(straight_line([0.0, 0.0], [4.0, 0.0]))
+    tracker = TrajectoryTracker(path, TrajectoryTrackingParams(law='linear', **NO_LIMITS))
+    assert tracker.update([0.0, -0.1, 0.0], 0.0).angular == pytest.approx(19.0 * 0.1)
+    tracker.set_gains({'variant': 'scheduled'})
+    assert tracker.params.law == 'scheduled'
+    assert tracker.update([0.0, -0.1, 0.0], 0.0).angular == pytest.approx(13.75 * 0.5 * 0.1)
+    with pytest.raises(ValueError):
+        tracker.set_gains({'variant': 'fuzzy'})
+    assert tracker.params.law == 'scheduled'

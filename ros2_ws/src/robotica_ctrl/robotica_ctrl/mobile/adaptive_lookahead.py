@@ -17,22 +17,26 @@ style of Nav2's Regulated Pure Pursuit (``lookahead_time``, ``min_lookahead_dist
   smooth approach, short once on it for close tracking.
 
 :class:`AdaptivePurePursuit` wraps :class:`~robotica_ctrl.mobile.pure_pursuit.PurePursuit`
-and sets its ``lookahead_distance`` before each update. Frames are REP-103.
+and sets its ``lookahead_distance`` before each update. Its gains, as the ``path_tracker``
+node names them, are those of pure pursuit but ``lookahead_distance``, and the rule's
+``rule``, ``gain``, ``min_lookahead``, ``max_lookahead`` and ``curvature_spacing``
+(:func:`adaptive_params`). Frames are REP-103.
 """
 
 from dataclasses import dataclass, replace
 import math
+from typing import Any, Mapping
 
 from numpy.typing import ArrayLike
 
 from robotica_ctrl.mobile.path import PolylinePath
-from robotica_ctrl.mobile.pure_pursuit import PurePursuit, PurePursuitCommand, PurePursuitParams
+from robotica_ctrl.mobile.pure_pursuit import PurePursuit, PurePursuitParams
 from robotica_ctrl.mobile.quintic_tracker import path_curvature
-from robotica_ctrl.mobile.tracker_base import check_pose
+from robotica_ctrl.mobile.tracker_base import check_pose, replace_gains, TrackerOutput
 
 __all__ = [
-    'AdaptivePurePursuit', 'LOOKAHEAD_RULES', 'LookaheadRule', 'lookahead_by_curvature',
-    'lookahead_by_error', 'lookahead_by_speed',
+    'AdaptivePurePursuit', 'LOOKAHEAD_RULES', 'LookaheadRule', 'adaptive_params',
+    'lookahead_by_curvature', 'lookahead_by_error', 'lookahead_by_speed',
 ]
 
 LOOKAHEAD_RULES = ('speed', 'curvature', 'error')
@@ -176,6 +180,39 @@ class LookaheadRule:
         return rule(value, self.gain, self.minimum, self.maximum)
 
 
+_RULE_GAINS = {'rule': 'kind', 'gain': 'gain', 'min_lookahead': 'minimum',
+               'max_lookahead': 'maximum', 'curvature_spacing': 'curvature_spacing'}
+
+
+def adaptive_params(gains: Mapping[str, Any], params: PurePursuitParams | None = None,
+                    rule: LookaheadRule | None = None
+                    ) -> tuple[PurePursuitParams, LookaheadRule]:
+    """
+    Return ``params`` and ``rule`` (the defaults if None) with adaptive pure pursuit's gains.
+
+    ``rule``, ``gain``, ``min_lookahead``, ``max_lookahead`` and ``curvature_spacing`` go to
+    the :class:`LookaheadRule` (fields ``kind``, ``gain``, ``minimum``, ``maximum``,
+    ``curvature_spacing``), the others to :class:`PurePursuitParams`, whose
+    ``lookahead_distance`` becomes the rule's minimum (each update overwrites it).
+
+    Raises
+    ------
+    ValueError
+        For an unknown name or a value the dataclasses refuse.
+
+    >>> params, rule = adaptive_params({'rule': 'error', 'min_lookahead': 0.4})
+    >>> rule.kind, params.lookahead_distance
+    ('error', 0.4)
+
+    """
+    rule = replace(LookaheadRule() if rule is None else rule,
+                   **{_RULE_GAINS[name]: value for name, value in gains.items()
+                      if name in _RULE_GAINS})
+    others = {name: value for name, value in gains.items() if name not in _RULE_GAINS}
+    return replace_gains(PurePursuitParams() if params is None else params,
+                         {**others, 'lookahead_distance': rule.minimum}), rule
+
+
 class AdaptivePurePursuit:
     """
     Pure pursuit whose look-ahead follows a :class:`LookaheadRule` (book §9.3.1).
@@ -198,8 +235,8 @@ class AdaptivePurePursuit:
     --------
     >>> tracker = AdaptivePurePursuit(PolylinePath([[0.0, 0.0], [9.0, 0.0]]),
     ...                               PurePursuitParams(), LookaheadRule('error', 2.0, 0.5, 3.0))
-    >>> cmd = tracker.update([0.0, 0.5, 0.0])
-    >>> tracker.lookahead_distance, cmd.goal_point
+    >>> out = tracker.update([0.0, 0.5, 0.0], 0.0)
+    >>> tracker.lookahead_distance, out.target_point
     (1.5, array([1.5, 0. ]))
 
     """
@@ -230,21 +267,32 @@ class AdaptivePurePursuit:
         self._tracker.set_params(params)
         self._rule = rule
 
+    def set_gains(self, gains: Mapping[str, Any]) -> None:
+        """Replace some gains (:func:`adaptive_params`); ValueError keeps the old."""
+        self.set_params(*adaptive_params(gains, self._tracker.params, self._rule))
+
     def reset(self) -> None:
         """Restart the wrapped tracker from the beginning of the path."""
         self._tracker.reset()
         self._speed = self._tracker.params.desired_linear_velocity
 
-    def update(self, pose: ArrayLike, speed: float | None = None) -> PurePursuitCommand:
+    def update(self, pose: ArrayLike, time: float, speed: float | None = None) -> TrackerOutput:
         """
-        Set L by the rule, then return the wrapped tracker's command for ``pose``.
+        Set L by the rule, then return the wrapped tracker's output for ``pose``.
 
         Parameters
         ----------
         pose : array_like, shape (3,)
             Vehicle pose (x [m], y [m], θ [rad]) in the path frame.
+        time : float
+            Time of the pose [s]; not used.
         speed : float, optional
             Measured forward speed [m/s] for the 'speed' rule; the last command when omitted.
+
+        Returns
+        -------
+        TrackerOutput
+            As :meth:`PurePursuit.update`.
 
         Raises
         ------
@@ -268,6 +316,6 @@ class AdaptivePurePursuit:
             else:
                 value = projection.cross_track
         tracker.set_params(replace(params, lookahead_distance=rule.lookahead(value)))
-        command = tracker.update(x)
-        self._speed = command.linear
-        return command
+        output = tracker.update(x, time)
+        self._speed = output.linear
+        return output

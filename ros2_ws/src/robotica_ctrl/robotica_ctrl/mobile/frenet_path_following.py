@@ -47,7 +47,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from robotica_ctrl.mobile.path import PathProjection, PolylinePath
-from robotica_ctrl.mobile.tracker_base import check_pose, PathTrackerBase
+from robotica_ctrl.mobile.tracker_base import check_pose, PathTrackerBase, TrackerOutput
 from robotica_kin.angles import wrap_to_pi
 
 __all__ = [
@@ -56,7 +56,6 @@ __all__ = [
     'frenet_error_rates',
     'frenet_errors',
     'FRENET_LAWS',
-    'FrenetCommand',
     'FrenetErrors',
     'FrenetParams',
     'FrenetPathFollower',
@@ -368,42 +367,6 @@ def in_convergence_region(lateral_error: float, heading_error: float, k1: float,
     return (d * d + heading * heading / gain) * c_max * c_max < 1.0
 
 
-@dataclass(frozen=True)
-class FrenetCommand:
-    """
-    Output of one :meth:`FrenetPathFollower.update`.
-
-    Attributes
-    ----------
-    linear : float
-        Forward velocity v [m/s] in ``base_link``, >= 0.
-    angular : float
-        Yaw rate ω = v γ [rad/s], > 0 counter-clockwise.
-    curvature : float
-        Commanded curvature γ = ω / v [1/m], > 0 turns left.
-    lateral_error : float
-        d [m] used by the law, > 0 left of the path.
-    heading_error : float
-        θ̃ [rad] used by the law, in (-π, π].
-    path_curvature : float
-        c(s) [1/m] used in the feed-forward.
-    projection : PathProjection
-        The vehicle's projection onto the path.
-    finished : bool
-        Whether the end of the path has been reached (then ``linear == angular == 0``).
-
-    """
-
-    linear: float
-    angular: float
-    curvature: float
-    lateral_error: float
-    heading_error: float
-    path_curvature: float
-    projection: PathProjection
-    finished: bool
-
-
 class FrenetPathFollower(PathTrackerBase[FrenetParams]):
     """
     Path follower in the Frenet frame of a :class:`PolylinePath` (book §9.4.3).
@@ -428,8 +391,8 @@ class FrenetPathFollower(PathTrackerBase[FrenetParams]):
     Examples
     --------
     >>> follower = FrenetPathFollower(PolylinePath([[0.0, 0.0], [5.0, 0.0]]), FrenetParams())
-    >>> cmd = follower.update([0.0, 0.5, 0.0])
-    >>> cmd.linear, cmd.angular, cmd.curvature, cmd.lateral_error  # u = -k1 v d
+    >>> out = follower.update([0.0, 0.5, 0.0], 0.0)
+    >>> out.linear, out.angular, out.extras['curvature'], out.cross_track  # u = -k1 v d
     (0.5, -0.25, -0.5, 0.5)
 
     """
@@ -469,7 +432,7 @@ class FrenetPathFollower(PathTrackerBase[FrenetParams]):
         """
         return self._curvature(_finite_scalar('s', s))
 
-    def update(self, pose: ArrayLike) -> FrenetCommand:
+    def update(self, pose: ArrayLike, time: float, speed: float | None = None) -> TrackerOutput:
         """
         Return the command for vehicle pose ``pose`` (one control period).
 
@@ -486,10 +449,17 @@ class FrenetPathFollower(PathTrackerBase[FrenetParams]):
         ----------
         pose : array_like, shape (3,)
             Vehicle pose (x [m], y [m], θ [rad]) in the path frame, θ from the x axis.
+        time : float
+            Time of the pose [s]; not used.
+        speed : float, optional
+            Measured speed [m/s]; not used (the law runs at the desired speed).
 
         Returns
         -------
-        FrenetCommand
+        TrackerOutput
+            Velocities; ``cross_track`` and ``heading_error`` are the d and θ̃ of the law,
+            ``target_point`` the closest point of the path; ``extras``: ``curvature``
+            γ = ω / v [1/m] and ``path_curvature`` c(s) [1/m] of the feed-forward.
 
         Raises
         ------
@@ -501,14 +471,15 @@ class FrenetPathFollower(PathTrackerBase[FrenetParams]):
         params = self._params
         errors = frenet_errors(x, projection, self._curvature(projection.s))
         if self._finished:
-            return FrenetCommand(0.0, 0.0, 0.0, errors.lateral_error, errors.heading_error,
-                                 errors.path_curvature, projection, True)
-        v = params.desired_linear_velocity
-        gamma = frenet_angular_velocity(errors, v, params) / v
-        if abs(v * gamma) > params.max_angular_velocity:
-            v = params.max_angular_velocity / abs(gamma)
-        return FrenetCommand(v, v * gamma, gamma, errors.lateral_error, errors.heading_error,
-                             errors.path_curvature, projection, False)
+            v = gamma = 0.0
+        else:
+            v = params.desired_linear_velocity
+            gamma = frenet_angular_velocity(errors, v, params) / v
+            if abs(v * gamma) > params.max_angular_velocity:
+                v = params.max_angular_velocity / abs(gamma)
+        return TrackerOutput(v, v * gamma, errors.lateral_error, errors.heading_error,
+                             projection.along_track, projection.point, self._finished,
+                             {'curvature': gamma, 'path_curvature': errors.path_curvature})
 
 
 def steering_state_matrices(linear_velocity: float, steering_time_constant: float,

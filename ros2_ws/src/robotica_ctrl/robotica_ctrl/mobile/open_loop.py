@@ -6,14 +6,21 @@ Ejemplo 4.8 (§4.7.4) gives a tricycle the (v, ω) of a circle. A profile is a t
 t_k [s] with the forward speed v_k [m/s] and the yaw rate ω_k [rad/s] of the guide point,
 interpolated linearly between the rows (so a ramp is two rows) and held after the last one. No
 feedback: what the vehicle does with it is what the book plots.
+
+:class:`OpenLoop` plays a profile as a tracking law (the ``path_tracker`` node's ``open_loop``,
+gains ``times``, ``linear`` and ``angular``): it reads only the time, never the pose or a path,
+so it measures no tracking error.
 """
 
 from dataclasses import dataclass
+import math
+from typing import Any, Mapping
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
+from robotica_ctrl.mobile.tracker_base import replace_gains, TrackerOutput
 
-__all__ = ['OpenLoopProfile']
+__all__ = ['OpenLoop', 'OpenLoopProfile']
 
 
 @dataclass(frozen=True, eq=False)
@@ -56,3 +63,41 @@ class OpenLoopProfile:
         times: NDArray[np.float64] = np.asarray(self.times)
         return (float(np.interp(t, times, np.asarray(self.linear))),
                 float(np.interp(t, times, np.asarray(self.angular))))
+
+
+class OpenLoop:
+    """
+    The tracking law that plays an :class:`OpenLoopProfile` against time, without feedback.
+
+    :meth:`update` returns the profile's (v, ω) at its ``time``; the pose and the speed are not
+    read. The errors and the target point of its :class:`TrackerOutput` are NaN (no path is
+    followed) and it never finishes.
+
+    >>> law = OpenLoop(OpenLoopProfile([0.0, 10.0], [0.125, 0.25], [-0.25, 0.0]))
+    >>> out = law.update([0.0, 0.0, 0.0], 5.0)
+    >>> out.linear, out.angular, out.cross_track, out.finished
+    (0.1875, -0.125, nan, False)
+    """
+
+    def __init__(self, profile: OpenLoopProfile) -> None:
+        self._profile = profile
+        self._no_target = np.full(2, math.nan)
+        self._no_target.flags.writeable = False
+
+    @property
+    def profile(self) -> OpenLoopProfile:
+        """Return the profile played."""
+        return self._profile
+
+    def update(self, pose: ArrayLike, time: float, speed: float | None = None) -> TrackerOutput:
+        """Return the profile's (v [m/s], ω [rad/s]) at ``time`` [s]; no errors (NaN)."""
+        linear, angular = self._profile.command(time)
+        return TrackerOutput(linear, angular, math.nan, math.nan, math.nan, self._no_target,
+                             False)
+
+    def set_gains(self, gains: Mapping[str, Any]) -> None:
+        """Replace ``times``, ``linear`` or ``angular``; ValueError keeps the old profile."""
+        self._profile = replace_gains(self._profile, gains)
+
+    def reset(self) -> None:
+        """Do nothing: the profile is played against the time of each update."""

@@ -22,10 +22,9 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from robotica_ctrl.mobile.path import PathProjection
-from robotica_ctrl.mobile.tracker_base import PathTrackerBase
+from robotica_ctrl.mobile.tracker_base import PathTrackerBase, TrackerOutput
 
-__all__ = ['PurePursuit', 'PurePursuitCommand', 'PurePursuitParams', 'curvature_to_point']
+__all__ = ['PurePursuit', 'PurePursuitParams', 'curvature_to_point']
 
 
 def curvature_to_point(p: ArrayLike) -> float:
@@ -108,62 +107,6 @@ class PurePursuitParams:
                 f'desired_linear_velocity ({self.desired_linear_velocity!r} m/s)')
 
 
-@dataclass(frozen=True)
-class PurePursuitCommand:
-    """
-    Output of one :meth:`PurePursuit.update`.
-
-    Attributes
-    ----------
-    linear : float
-        Forward velocity v [m/s] in ``base_link``, >= 0.
-    angular : float
-        Yaw rate ω = v γ [rad/s], > 0 counter-clockwise.
-    curvature : float
-        Commanded curvature γ [1/m], book (9.5); > 0 turns left.
-    goal_point : ndarray, shape (2,)
-        Goal point (x, y) [m] in the path frame; stored as a read-only float64 copy.
-    projection : PathProjection
-        The vehicle's projection onto the path.
-    finished : bool
-        Whether the end of the path has been reached (then ``linear == angular == 0``).
-
-    Examples
-    --------
-    >>> from robotica_ctrl.mobile.path import PathProjection
-    >>> proj = PathProjection(0.0, [0.0, 0.0], 0, 0.0, 0.0, 0.0, 0.0)
-    >>> PurePursuitCommand(0.5, 0.0, 0.0, [0.5, 0.0], proj, False).goal_point
-    array([0.5, 0. ])
-
-    """
-
-    linear: float
-    angular: float
-    curvature: float
-    goal_point: NDArray[np.float64]
-    projection: PathProjection
-    finished: bool
-
-    def __post_init__(self) -> None:
-        goal = np.array(self.goal_point, dtype=np.float64)
-        if goal.shape != (2,):
-            raise ValueError(f'goal_point must have shape (2,), got {goal.shape}')
-        goal.flags.writeable = False
-        object.__setattr__(self, 'goal_point', goal)
-
-    @classmethod
-    def _from_checked(cls, linear: float, angular: float, curvature: float,
-                      goal_point: NDArray[np.float64], projection: PathProjection,
-                      finished: bool) -> 'PurePursuitCommand':
-        """Build a command around ``goal_point``, a (2,) float64 array no one else holds."""
-        goal_point.flags.writeable = False
-        command = cls.__new__(cls)
-        command.__dict__.update(linear=linear, angular=angular, curvature=curvature,
-                                goal_point=goal_point, projection=projection,
-                                finished=finished)
-        return command
-
-
 class PurePursuit(PathTrackerBase[PurePursuitParams]):
     """
     Pure-pursuit tracker of a :class:`PolylinePath` (book §9.3.1, fig. 9.4).
@@ -185,13 +128,13 @@ class PurePursuit(PathTrackerBase[PurePursuitParams]):
     --------
     >>> from robotica_ctrl.mobile.path import PolylinePath
     >>> tracker = PurePursuit(PolylinePath([[0.0, 0.0], [5.0, 0.0]]), PurePursuitParams())
-    >>> cmd = tracker.update([0.0, 0.0, 0.0])
-    >>> cmd.linear, cmd.curvature, cmd.goal_point
+    >>> out = tracker.update([0.0, 0.0, 0.0], 0.0)
+    >>> out.linear, out.extras['curvature'], out.target_point
     (0.5, 0.0, array([0.5, 0. ]))
 
     """
 
-    def update(self, pose: ArrayLike) -> PurePursuitCommand:
+    def update(self, pose: ArrayLike, time: float, speed: float | None = None) -> TrackerOutput:
         """
         Return the command for vehicle pose ``pose`` (one period of fig. 9.4).
 
@@ -211,11 +154,16 @@ class PurePursuit(PathTrackerBase[PurePursuitParams]):
         ----------
         pose : array_like, shape (3,)
             Vehicle pose (x [m], y [m], θ [rad]) in the path frame, θ from the x axis.
+        time : float
+            Time of the pose [s]; not used (the law has no dynamics).
+        speed : float, optional
+            Measured speed [m/s]; not used.
 
         Returns
         -------
-        PurePursuitCommand
-            Velocities, curvature, goal point and projection.
+        TrackerOutput
+            Velocities, errors from the projection, the goal point as ``target_point``;
+            ``extras['curvature']`` is γ [1/m].
 
         Raises
         ------
@@ -225,23 +173,24 @@ class PurePursuit(PathTrackerBase[PurePursuitParams]):
 
         >>> from robotica_ctrl.mobile.path import PolylinePath
         >>> tracker = PurePursuit(PolylinePath([[0.0, 0.0], [5.0, 0.0]]), PurePursuitParams())
-        >>> tracker.update([0.0, 0.5, 0.0]).curvature  # 2 (-0.5) / (0.5² + 0.5²)
+        >>> tracker.update([0.0, 0.5, 0.0], 0.0).extras['curvature']  # 2 (-0.5) / (0.5² + 0.5²)
         -2.0
 
         """
         x, projection = self._locate(pose)
         params = self._params
         goal = self._path.point_at(projection.s + params.lookahead_distance)
+        theta = float(x[2])
         if self._finished:
-            return PurePursuitCommand._from_checked(0.0, 0.0, 0.0, goal, projection, True)
+            return self._output(0.0, 0.0, theta, projection, goal, True, {'curvature': 0.0})
         remaining = self._path.length - projection.s
-        gamma = _steering_curvature(goal - x[:2], float(x[2]))
+        gamma = _steering_curvature(goal - x[:2], theta)
         v = params.desired_linear_velocity
         if remaining < params.approach_distance:
             v = max(v * remaining / params.approach_distance, params.min_approach_velocity)
         if abs(v * gamma) > params.max_angular_velocity:
             v = params.max_angular_velocity / abs(gamma)
-        return PurePursuitCommand._from_checked(v, v * gamma, gamma, goal, projection, False)
+        return self._output(v, v * gamma, theta, projection, goal, False, {'curvature': gamma})
 
 
 def _steering_curvature(offset: NDArray[np.float64], theta: float) -> float:

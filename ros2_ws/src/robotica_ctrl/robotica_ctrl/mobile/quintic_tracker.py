@@ -33,12 +33,12 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from robotica_ctrl.mobile.path import PolylinePath
-from robotica_ctrl.mobile.tracker_base import PathTrackerBase
+from robotica_ctrl.mobile.tracker_base import PathTrackerBase, TrackerOutput
 from robotica_kin.angles import wrap_to_pi
 
 __all__ = [
-    'MAX_GOAL_HEADING', 'QuinticTracker', 'QuinticTrackerCommand', 'QuinticTrackerParams',
-    'path_curvature', 'path_heading', 'quintic_coefficients', 'quintic_curvature',
+    'MAX_GOAL_HEADING', 'QuinticTracker', 'QuinticTrackerParams', 'path_curvature',
+    'path_heading', 'quintic_coefficients', 'quintic_curvature',
 ]
 
 MAX_GOAL_HEADING = 1.3  # [rad] beyond this relative goal heading the pure-pursuit arc is used
@@ -211,58 +211,6 @@ class QuinticTrackerParams:
                 raise ValueError(f'{field.name} must be positive and finite, got {value!r}')
 
 
-@dataclass(frozen=True)
-class QuinticTrackerCommand:
-    """
-    Output of one :meth:`QuinticTracker.update`.
-
-    Attributes
-    ----------
-    linear : float
-        Forward velocity v [m/s] in ``base_link``, >= 0.
-    angular : float
-        Yaw rate ω = v γ [rad/s], > 0 counter-clockwise.
-    curvature : float
-        Commanded curvature γ [1/m], > 0 turns left.
-    cross_track : float
-        Lateral offset of the vehicle from the path [m], > 0 when left of it.
-    goal_point : ndarray, shape (2,)
-        Goal point (x, y) [m] in the path frame; stored as a read-only float64 copy.
-    finished : bool
-        Whether the end of the path has been reached (then ``linear == angular == 0``).
-    coefficients : ndarray, shape (6,) or None
-        Quintic c0..c5 in ``base_link`` (see :func:`quintic_coefficients`), or None when the
-        pure-pursuit fallback (or the stop) produced the command.
-
-    Examples
-    --------
-    >>> QuinticTrackerCommand(0.5, 0.0, 0.0, 0.0, [1.0, 0.0], False).goal_point
-    array([1., 0.])
-
-    """
-
-    linear: float
-    angular: float
-    curvature: float
-    cross_track: float
-    goal_point: NDArray[np.float64]
-    finished: bool
-    coefficients: NDArray[np.float64] | None = None
-
-    def __post_init__(self) -> None:
-        goal = np.array(self.goal_point, dtype=np.float64)
-        if goal.shape != (2,):
-            raise ValueError(f'goal_point must have shape (2,), got {goal.shape}')
-        goal.flags.writeable = False
-        object.__setattr__(self, 'goal_point', goal)
-        if self.coefficients is not None:
-            c = np.array(self.coefficients, dtype=np.float64)
-            if c.shape != (6,):
-                raise ValueError(f'coefficients must have shape (6,), got {c.shape}')
-            c.flags.writeable = False
-            object.__setattr__(self, 'coefficients', c)
-
-
 class QuinticTracker(PathTrackerBase[QuinticTrackerParams]):
     """
     Quintic-polynomial tracker of a :class:`PolylinePath` (book §9.3.2).
@@ -281,8 +229,8 @@ class QuinticTracker(PathTrackerBase[QuinticTrackerParams]):
     Examples
     --------
     >>> tracker = QuinticTracker(PolylinePath([[0.0, 0.0], [5.0, 0.0]]), QuinticTrackerParams())
-    >>> cmd = tracker.update([0.0, 0.0, 0.0])
-    >>> cmd.linear, cmd.curvature, cmd.goal_point
+    >>> out = tracker.update([0.0, 0.0, 0.0], 0.0)
+    >>> out.linear, out.extras['curvature'], out.target_point
     (0.5, 0.0, array([1., 0.]))
 
     """
@@ -296,8 +244,8 @@ class QuinticTracker(PathTrackerBase[QuinticTrackerParams]):
         super().reset()
         self._curvature = 0.0
 
-    def update(self, pose: ArrayLike,
-               current_curvature: float | None = None) -> QuinticTrackerCommand:
+    def update(self, pose: ArrayLike, time: float, speed: float | None = None, *,
+               current_curvature: float | None = None) -> TrackerOutput:
         """
         Return the command for vehicle pose ``pose`` (one period of §9.3.2).
 
@@ -317,13 +265,21 @@ class QuinticTracker(PathTrackerBase[QuinticTrackerParams]):
         ----------
         pose : array_like, shape (3,)
             Vehicle pose (x [m], y [m], θ [rad]) in the path frame, θ from the x axis.
+        time : float
+            Time of the pose [s]; not used.
+        speed : float, optional
+            Measured speed [m/s]; not used (the quintic is read v τ ahead at the desired
+            speed).
         current_curvature : float, optional
             Measured vehicle curvature γ_act [1/m]; the last command when omitted.
 
         Returns
         -------
-        QuinticTrackerCommand
-            Velocities, curvature, cross-track error, goal point and quintic.
+        TrackerOutput
+            Velocities, errors from the projection and the goal point as ``target_point``;
+            ``extras``: ``curvature`` γ [1/m] and ``coefficients``, the quintic c0..c5 in
+            ``base_link`` (:func:`quintic_coefficients`, read-only), or None when the
+            pure-pursuit fallback (or the stop) produced the command.
 
         Raises
         ------
@@ -340,10 +296,11 @@ class QuinticTracker(PathTrackerBase[QuinticTrackerParams]):
         path = self._path
         s_goal = min(projection.s + params.lookahead_distance, path.length)
         goal = path.point_at(s_goal)
+        theta = float(x[2])
         if self._finished:
             self._curvature = 0.0
-            return QuinticTrackerCommand(0.0, 0.0, 0.0, projection.cross_track, goal, True)
-        theta = float(x[2])
+            return self._output(0.0, 0.0, theta, projection, goal, True,
+                                {'curvature': 0.0, 'coefficients': None})
         cos_t, sin_t = math.cos(theta), math.sin(theta)
         dx, dy = float(goal[0] - x[0]), float(goal[1] - x[1])
         forward = cos_t * dx + sin_t * dy  # (9.11), REP-103
@@ -357,14 +314,15 @@ class QuinticTracker(PathTrackerBase[QuinticTrackerParams]):
         if forward > _MIN_FORWARD and abs(heading) <= MAX_GOAL_HEADING:
             gamma_f = path_curvature(path, s_goal, params.curvature_spacing)  # (9.13)
             coefficients = quintic_coefficients(forward, lateral, heading, gamma_in, gamma_f)
+            coefficients.flags.writeable = False
             gamma = quintic_curvature(coefficients, min(v * params.actuator_delay, forward))
         else:
             gamma = _pure_pursuit_curvature(forward, lateral)
         if abs(v * gamma) > params.max_angular_velocity:
             v = params.max_angular_velocity / abs(gamma)
         self._curvature = gamma
-        return QuinticTrackerCommand(v, v * gamma, gamma, projection.cross_track, goal, False,
-                                     coefficients)
+        return self._output(v, v * gamma, theta, projection, goal, False,
+                            {'curvature': gamma, 'coefficients': coefficients})
 
 
 def path_heading(path: PolylinePath, s: float, spacing: float) -> float:

@@ -1,5 +1,11 @@
 """
-State shared by the path trackers of book ch. 9: the path, the tunables, the progress, the end.
+What every tracking law of book ch. 9 shares: its output, its interface, the path state.
+
+:class:`TrackerOutput` is the one answer of every law to :meth:`TrackingLaw.update`: the
+velocity command (v [m/s], ω [rad/s]), the tracking errors the ``path_tracker`` node publishes
+as ``robotica_msgs/TrackingError``, the end flag and the law's own telemetry (``extras``: its
+curvature, quintic, GPC prediction, ...). :class:`TrackingLaw` is the interface the node and
+the tracking benchmark drive, whatever the law.
 
 :class:`PathTrackerBase` holds what pure pursuit (§9.3.1), the quintic tracker (§9.3.2), the
 Frenet path follower (§9.4.3) and the GPC tracker (§9.5) have in common: a
@@ -11,19 +17,96 @@ within ``goal_tolerance``, kept until :meth:`PathTrackerBase.reset`). Each law s
 adds its own :meth:`update`.
 """
 
+from dataclasses import fields, replace
 import math
-from typing import Generic, Protocol, TypeVar
+from types import MappingProxyType
+from typing import (Any, ClassVar, Generic, Mapping, NamedTuple, Protocol, TYPE_CHECKING,
+                    TypeVar)
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from robotica_ctrl.mobile.path import PathProjection, PolylinePath
 from robotica_kin.finite import all_finite
 
-__all__ = ['PathTrackerBase', 'TrackerParams', 'check_pose']
+if TYPE_CHECKING:
+    from _typeshed import DataclassInstance
+
+__all__ = ['PathTrackerBase', 'TrackerOutput', 'TrackerParams', 'TrackingLaw', 'angle_error',
+           'check_pose', 'replace_gains']
+
+_NO_EXTRAS: Mapping[str, Any] = MappingProxyType({})
+
+
+class TrackerOutput(NamedTuple):
+    """
+    One step of any law: the command, the errors the node reports as ``TrackingError``, extras.
+
+    Attributes
+    ----------
+    linear : float
+        Forward velocity v [m/s] in ``base_link``.
+    angular : float
+        Yaw rate ω [rad/s], > 0 counter-clockwise.
+    cross_track : float
+        Lateral offset from the path (or the reference) [m], > 0 left of it; NaN for a law
+        that follows no path (the open-loop profile).
+    heading_error : float
+        θ - θ_path (or θ - θ_ref) [rad], wrapped to (-π, π]; NaN without a path.
+    along_track : float
+        Offset along the path beyond its ends (path laws), or behind the reference
+        (trajectory tracking, > 0 when the robot lags) [m]; NaN without a path.
+    target_point : ndarray, shape (2,)
+        The point the law steers to: goal point, closest point or reference position [m],
+        read-only; NaN without a path.
+    finished : bool
+        Whether the end of the path (or trajectory) was reached; the command is then zero.
+    extras : mapping
+        The law's own telemetry by name, e.g. ``curvature`` γ [1/m] of the geometric laws
+        (ω = v γ), the quintic's ``coefficients``, GPC's ``reference`` and ``prediction``;
+        each law's docstring lists its keys.
+
+    Examples
+    --------
+    >>> out = TrackerOutput(0.5, 0.0, 0.1, 0.0, 0.0, np.zeros(2), False, {'curvature': 0.0})
+    >>> out.linear, out.extras['curvature']
+    (0.5, 0.0)
+
+    """
+
+    linear: float
+    angular: float
+    cross_track: float
+    heading_error: float
+    along_track: float
+    target_point: NDArray[np.float64]
+    finished: bool
+    extras: Mapping[str, Any] = _NO_EXTRAS
+
+
+class TrackingLaw(Protocol):
+    """A tracking law with its state, driven once per control period by :meth:`update`."""
+
+    def update(self, pose: ArrayLike, time: float,
+               speed: float | None = None) -> TrackerOutput:
+        """
+        Return the command and errors for ``pose`` (x [m], y [m], θ [rad]) at ``time`` [s].
+
+        ``speed`` is the measured forward speed [m/s] when known (adaptive look-ahead, GPC
+        model). A law that reads the pose raises ValueError for one that is not a finite (3,)
+        vector.
+        """
+
+    def set_gains(self, gains: Mapping[str, Any]) -> None:
+        """Replace some gains (names of the law's parameters); ValueError keeps the old."""
+
+    def reset(self) -> None:
+        """Restart from the beginning of the path (and of the trajectory)."""
 
 
 class TrackerParams(Protocol):
-    """The tunables every path tracker reads: its finish and search distances [m]."""
+    """The tunables every path tracker reads: a dataclass with its finish and search distances."""
+
+    __dataclass_fields__: ClassVar[dict[str, Any]]
 
     @property
     def goal_tolerance(self) -> float:
@@ -35,6 +118,46 @@ class TrackerParams(Protocol):
 
 
 ParamsT = TypeVar('ParamsT', bound=TrackerParams)
+DataclassT = TypeVar('DataclassT', bound='DataclassInstance')
+
+_FIELD = {'variant': 'law'}   # gain name -> params field, where they differ ('law' is the node's)
+
+
+def replace_gains(params: DataclassT, gains: Mapping[str, Any]) -> DataclassT:
+    """
+    Return a copy of the tunables ``params`` (a frozen dataclass) with ``gains`` applied.
+
+    Gains are named as the law's parameters of the ``path_tracker`` node, which are the
+    dataclass's fields but for ``variant`` (the field ``law``: the node's ``law`` names the
+    tracking law itself). The dataclass checks the new values.
+
+    Raises
+    ------
+    ValueError
+        For a name that is not a field, or a value the dataclass refuses.
+
+    >>> from robotica_ctrl.mobile.pure_pursuit import PurePursuitParams
+    >>> replace_gains(PurePursuitParams(), {'lookahead_distance': 1.0}).lookahead_distance
+    1.0
+
+    """
+    names = {field.name for field in fields(params)}
+    changes = {_FIELD.get(name, name): value for name, value in gains.items()}
+    unknown = sorted(set(changes) - names)
+    if unknown:
+        raise ValueError(f'no gain {unknown}; the gains: {sorted(names)}')
+    return replace(params, **changes)
+
+
+def angle_error(theta: float, reference: float) -> float:
+    """
+    Return θ - θ_ref [rad] wrapped to (-π, π] (scalar, exact: ``math.remainder``).
+
+    >>> angle_error(3.0, -3.0) == 6.0 - 2.0 * math.pi
+    True
+    """
+    error = math.remainder(theta - reference, math.tau)
+    return math.pi if error == -math.pi else error
 
 
 def check_pose(pose: ArrayLike) -> NDArray[np.float64]:
@@ -99,6 +222,10 @@ class PathTrackerBase(Generic[ParamsT]):
         """Use ``params`` from the next update on; the progress is kept."""
         self._params = params
 
+    def set_gains(self, gains: Mapping[str, Any]) -> None:
+        """Replace some tunables by name (:func:`replace_gains`); ValueError keeps the old."""
+        self.set_params(replace_gains(self._params, gains))
+
     def reset(self) -> None:
         """Restart from the beginning of the path: progress 0, not finished."""
         self._progress = 0.0
@@ -121,3 +248,13 @@ class PathTrackerBase(Generic[ParamsT]):
         if max(path.length - projection.s, end_distance) <= params.goal_tolerance:
             self._finished = True
         return x, projection
+
+    @staticmethod
+    def _output(linear: float, angular: float, theta: float, projection: PathProjection,
+                target: NDArray[np.float64], finished: bool,
+                extras: Mapping[str, Any]) -> TrackerOutput:
+        """Return the output of a path law at heading θ [rad] with its projection."""
+        target.flags.writeable = False
+        return TrackerOutput(float(linear), float(angular), projection.cross_track,
+                             angle_error(theta, projection.tangent_heading),
+                             projection.along_track, target, finished, extras)

@@ -35,17 +35,27 @@ reads e1 = cos θ Δx + sin θ Δy (along the heading), e2 = -sin θ Δx + cos �
 positive to the left) and e3 = θ_r - θ, so the errors and the laws keep the book's signs
 unchanged. e3 is wrapped to (-π, π] (the book leaves it unwrapped); the commands are then
 clipped to ``max_linear`` and ``max_angular`` (not in the book).
+
+:func:`tracking_command` is the law at one instant, for a given reference sample.
+:class:`TrajectoryTracker` drives it in time along a path: the reference is a
+:class:`TimedPath`, the path's own timing when it has one (the stamps of a ``nav_msgs/Path``),
+else the path driven at ``reference_speed`` from the first update on.
 """
 
 from dataclasses import dataclass, fields
 import math
+from typing import Any, Mapping
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
+from robotica_ctrl.mobile.path import PolylinePath
+from robotica_ctrl.mobile.quintic_tracker import path_curvature, path_heading
+from robotica_ctrl.mobile.tracker_base import (angle_error, check_pose, replace_gains,
+                                               TrackerOutput)
 
-
-__all__ = ['LAWS', 'PostureReference', 'TrackingCommand', 'TrajectoryTracker',
-           'TrajectoryTrackingParams', 'design_linear_gains', 'posture_error']
+__all__ = ['LAWS', 'PostureReference', 'TimedPath', 'TrackingCommand', 'TrajectoryTracker',
+           'TrajectoryTrackingParams', 'design_linear_gains', 'posture_error',
+           'tracking_command', 'tracking_gains']
 
 LAWS = ('linear', 'scheduled', 'nonlinear')
 """Names of the control laws of :class:`TrajectoryTrackingParams`."""
@@ -174,12 +184,13 @@ def design_linear_gains(
 @dataclass(frozen=True)
 class TrajectoryTrackingParams:
     """
-    Tunables of :class:`TrajectoryTracker`.
+    Tunables of :func:`tracking_command` and :class:`TrajectoryTracker`.
 
     The defaults are Ejemplo 9.4 (nonlinear law, δ = 0.9, β = 13.75, k2 = 19); Ejemplo 9.3
     is ``law='linear', k2=2.0`` (k1 = 1, k3 = 4) for (a) and ``law='scheduled'`` for (b).
     Which gains each law reads: ``'linear'`` k1, k2, k3; ``'scheduled'`` δ, β;
-    ``'nonlinear'`` k2, δ, β.
+    ``'nonlinear'`` k2, δ, β. The last three tunables are the tracker's reference and end
+    (:class:`TrajectoryTracker`).
 
     Raises
     ------
@@ -203,6 +214,9 @@ class TrajectoryTrackingParams:
     beta: float = 13.75  # β [rad²/m²], speed weight of b = sqrt(ω_r² + β v_r²) (9.76)
     max_linear: float = 1.0  # [m/s] |v| limit applied to the command (not in the book)
     max_angular: float = 1.5  # [rad/s] |ω| limit applied to the command (not in the book)
+    reference_speed: float = 0.5  # [m/s] of the reference along a path without timing
+    curvature_spacing: float = 0.1  # [m] of the reference heading and curvature estimates
+    goal_tolerance: float = 0.05  # [m] from the path end, once the reference is there: done
 
     def __post_init__(self) -> None:
         if self.law not in LAWS:
@@ -299,29 +313,200 @@ class TrackingCommand:
         object.__setattr__(self, 'error', error)
 
 
-class TrajectoryTracker:
+def tracking_gains(params: TrajectoryTrackingParams, v_ref: float,
+                   omega_ref: float) -> tuple[float, float, float]:
     """
-    Posture tracker of Canudas de Wit et al. (book §9.4.2) for a unicycle-like robot.
+    Return (k1, k2, k3) of the law of ``params`` for the reference velocities (v_r, ω_r).
 
-    The law has no memory: each :meth:`update` depends only on the pose and the reference
-    sample given; the class holds the tunables.
+    ``'linear'``: the fixed k1, k2, k3 (9.70). ``'scheduled'``: k1 = k3 =
+    2δ sqrt(ω_r² + β v_r²), k2 = β |v_r| (9.77). ``'nonlinear'``: k1 = k3 as in
+    ``'scheduled'`` (9.82), k2 the constant of (9.78).
+
+    >>> tracking_gains(TrajectoryTrackingParams(law='scheduled', beta=3.0), 1.0, 1.0)
+    (3.6, 3.0, 3.6)
+
+    """
+    p = params
+    if p.law == 'linear':
+        return p.k1, p.k2, p.k3
+    k13 = 2.0 * p.delta * math.sqrt(omega_ref * omega_ref + p.beta * v_ref * v_ref)
+    if p.law == 'scheduled':
+        return k13, p.beta * abs(v_ref), k13
+    return k13, p.k2, k13
+
+
+def tracking_command(pose: ArrayLike, reference: PostureReference,
+                     params: TrajectoryTrackingParams) -> TrackingCommand:
+    """
+    Return the velocity command for robot pose ``pose`` tracking ``reference``.
+
+    The law has no memory: the command depends only on the pose and the reference sample.
+    Error (9.63) by :func:`posture_error`; u1 = -k1 e1 for every law; u2 =
+    -k2 sgn(v_r) e2 - k3 e3 for ``'linear'`` (9.70) and ``'scheduled'`` (9.77), and
+    u2 = -k2 v_r (sin e3 / e3) e2 - k3 e3 for ``'nonlinear'`` (9.78); then
+    v = v_r cos e3 - u1 and ω = ω_r - u2 (9.66), each clipped to its limit.
 
     Parameters
     ----------
+    pose : array_like, shape (3,)
+        Robot pose (x [m], y [m], θ [rad]) in the reference's frame, θ from the x axis.
+    reference : PostureReference
+        Reference posture and velocities at the same time.
     params : TrajectoryTrackingParams
-        Law and gains; replace them at run time with :meth:`set_params`.
+        Law and gains (:func:`tracking_gains`) and the limits.
+
+    Returns
+    -------
+    TrackingCommand
+        Velocities, error and gains.
+
+    Raises
+    ------
+    ValueError
+        If ``pose`` is not a finite (3,) vector.
 
     Examples
     --------
-    >>> tracker = TrajectoryTracker(TrajectoryTrackingParams(law='linear'))
-    >>> cmd = tracker.update([0.0, 0.0, 0.0], PostureReference(0.1, 0.0, 0.0, 0.5, 0.0))
+    >>> params = TrajectoryTrackingParams(law='linear')
+    >>> cmd = tracking_command([0.0, 0.0, 0.0], PostureReference(0.1, 0.0, 0.0, 0.5, 0.0),
+    ...                        params)
     >>> round(cmd.linear, 12), cmd.angular  # 0.5 + k1 0.1
     (0.6, 0.0)
+    >>> cmd = tracking_command([0.0, 0.0, 0.0], PostureReference(0.0, 0.05, 0.0, 0.5, 0.2),
+    ...                        params)
+    >>> cmd.linear, round(cmd.angular, 12)  # ω = 0.2 + k2 0.05 (k2 = 19)
+    (0.5, 1.15)
+
+    """
+    v_ref, omega_ref = reference.v, reference.omega
+    x, y, theta = _pose('pose', pose).tolist()
+    e1, e2, e3 = _error(x, y, theta, reference.x, reference.y, reference.theta)
+    k1, k2, k3 = tracking_gains(params, v_ref, omega_ref)
+    u1 = -k1 * e1
+    if params.law == 'nonlinear':
+        sinc = math.sin(e3) / e3 if e3 != 0.0 else 1.0
+        u2 = -k2 * v_ref * sinc * e2 - k3 * e3
+    else:
+        sign = (v_ref > 0.0) - (v_ref < 0.0)
+        u2 = -k2 * sign * e2 - k3 * e3
+    v = v_ref * math.cos(e3) - u1
+    omega = omega_ref - u2
+    v_clipped = min(max(v, -params.max_linear), params.max_linear)
+    omega_clipped = min(max(omega, -params.max_angular), params.max_angular)
+    saturated = v_clipped != v or omega_clipped != omega
+    return TrackingCommand(v_clipped, omega_clipped, np.array([e1, e2, e3]), (k1, k2, k3),
+                           saturated)
+
+
+class TimedPath:
+    """
+    A reference trajectory along a path: the arc length s(t) [m] and the posture there.
+
+    With ``times`` (one per path point [s], strictly increasing; ``stations`` are the points'
+    arc lengths [m], ``path.s`` by default) the path carries its own timing; without, it is
+    driven at ``speed`` [m/s] from ``start`` [s]. The reference posture at t is the path
+    point at s(t), the heading of the chord of the points ``spacing`` either side,
+    v_r = ds/dt and ω_r = v_r c(s) with c the three-point curvature; a timed path takes its
+    heading from its own points instead (central differences, exact on an evenly sampled
+    arc) and ω_r = dθ/dt. Past the end the reference stops there (v_r = ω_r = 0).
+
+    >>> line = PolylinePath([[0.0, 0.0], [2.0, 0.0]])
+    >>> ref = TimedPath(line, speed=0.5).reference(1.0)
+    >>> ref.x, ref.v, ref.omega
+    (0.5, 0.5, 0.0)
+    """
+
+    def __init__(self, path: PolylinePath, times: ArrayLike | None = None, speed: float = 0.5,
+                 start: float = 0.0, spacing: float = 0.1,
+                 stations: ArrayLike | None = None) -> None:
+        self.path = path
+        self.spacing = float(spacing)
+        if times is None:
+            if not (math.isfinite(speed) and speed > 0.0):
+                raise ValueError(f'speed must be positive and finite, got {speed!r}')
+            self._times = np.array([start, start + path.length / speed])
+            self._s = np.array([0.0, path.length])
+            self._theta = None
+            return
+        t = np.asarray(times, dtype=np.float64)
+        s = np.asarray(path.s if stations is None else stations, dtype=np.float64)
+        if t.ndim != 1 or t.shape != s.shape or t.size < 2:
+            raise ValueError(f'times must have one value per path point ({s.size}), got '
+                             f'shape {t.shape}')
+        if not (np.all(np.isfinite(t)) and np.all(np.diff(t) > 0.0)):
+            raise ValueError('times must be finite and increase strictly')
+        if not (np.all(np.isfinite(s)) and np.all(np.diff(s) >= 0.0)):
+            raise ValueError('stations must be finite and non-decreasing arc lengths [m]')
+        self._times, self._s = t, s
+        # A trajectory's heading and yaw rate come from its own points (central differences,
+        # exact on an arc sampled evenly), not from the chords of ``spacing``.
+        points = np.array([path.point_at(float(si)) for si in s])
+        chords = np.empty_like(points)
+        chords[1:-1] = points[2:] - points[:-2]
+        chords[0], chords[-1] = points[1] - points[0], points[-1] - points[-2]
+        self._theta = np.unwrap(np.arctan2(chords[:, 1], chords[:, 0]))
+
+    @property
+    def end_time(self) -> float:
+        """Return the time [s] at which the reference reaches the end of the path."""
+        return float(self._times[-1])
+
+    def reference(self, t: float) -> PostureReference:
+        """Return the reference posture and velocities at time ``t`` [s]."""
+        times, s_points = self._times, self._s
+        s = float(np.interp(t, times, s_points))
+        i = min(max(int(np.searchsorted(times, t, side='right')) - 1, 0), len(times) - 2)
+        moving = bool(times[0] <= t < times[-1])
+        dt = float(times[i + 1] - times[i])
+        v = float(s_points[i + 1] - s_points[i]) / dt if moving else 0.0
+        point = self.path.point_at(s)
+        if self._theta is not None:
+            theta = float(np.interp(t, times, self._theta))
+            omega = float(self._theta[i + 1] - self._theta[i]) / dt if moving else 0.0
+            return PostureReference(float(point[0]), float(point[1]), theta, v, omega)
+        theta = path_heading(self.path, s, self.spacing)
+        omega = v * path_curvature(self.path, s, self.spacing) if v != 0.0 else 0.0
+        return PostureReference(float(point[0]), float(point[1]), theta, v, omega)
+
+
+class TrajectoryTracker:
+    """
+    Posture tracker of Canudas de Wit et al. (book §9.4.2) along a path in time.
+
+    Each :meth:`update` takes the reference posture of the :class:`TimedPath` at its time
+    (built at the first update: an untimed path starts where and when the robot starts) and
+    applies :func:`tracking_command`. Once the reference has reached the end of the path and
+    the robot is within ``goal_tolerance`` of it, the command is zero until :meth:`reset`.
+
+    Parameters
+    ----------
+    path : PolylinePath
+        Reference path, in the frame of the poses (e.g. ``odom``).
+    params : TrajectoryTrackingParams
+        Law, gains, limits and reference; replace them with :meth:`set_params`.
+    times : array_like, optional
+        Time [s] of each path point (see :class:`TimedPath`); without, the reference moves
+        at ``params.reference_speed``.
+    stations : array_like, optional
+        Arc length [m] of each point ``times`` refers to (default ``path.s``; give them when
+        the points had duplicates that :class:`PolylinePath` dropped).
+
+    Examples
+    --------
+    >>> tracker = TrajectoryTracker(PolylinePath([[0.0, 0.0], [4.0, 0.0]]),
+    ...                             TrajectoryTrackingParams())
+    >>> tracker.update([0.0, 0.0, 0.0], 10.0).linear   # on the reference at its start
+    0.5
 
     """
 
-    def __init__(self, params: TrajectoryTrackingParams) -> None:
+    def __init__(self, path: PolylinePath, params: TrajectoryTrackingParams,
+                 times: ArrayLike | None = None, stations: ArrayLike | None = None) -> None:
+        self._path = path
         self._params = params
+        self._times, self._stations = times, stations
+        self._reference: TimedPath | None = None
+        self._finished = False
 
     @property
     def params(self) -> TrajectoryTrackingParams:
@@ -329,86 +514,66 @@ class TrajectoryTracker:
         return self._params
 
     def set_params(self, params: TrajectoryTrackingParams) -> None:
-        """
-        Use ``params`` from the next :meth:`update` on.
-
-        >>> tracker = TrajectoryTracker(TrajectoryTrackingParams())
-        >>> tracker.set_params(TrajectoryTrackingParams(law='scheduled'))
-        >>> tracker.params.law
-        'scheduled'
-
-        """
+        """Use ``params`` from the next update on (the reference's from the next reset)."""
         self._params = params
 
-    def gains(self, v_ref: float, omega_ref: float) -> tuple[float, float, float]:
+    def set_gains(self, gains: Mapping[str, Any]) -> None:
+        """Replace some tunables by name (``variant`` is ``law``); ValueError keeps the old."""
+        self.set_params(replace_gains(self._params, gains))
+
+    def reset(self) -> None:
+        """Restart the reference at the next update; not finished."""
+        self._reference = None
+        self._finished = False
+
+    def update(self, pose: ArrayLike, time: float, speed: float | None = None) -> TrackerOutput:
         """
-        Return (k1, k2, k3) of the current law for the reference velocities (v_r, ω_r).
-
-        ``'linear'``: the fixed k1, k2, k3 (9.70). ``'scheduled'``: k1 = k3 =
-        2δ sqrt(ω_r² + β v_r²), k2 = β |v_r| (9.77). ``'nonlinear'``: k1 = k3 as in
-        ``'scheduled'`` (9.82), k2 the constant of (9.78).
-
-        >>> tracker = TrajectoryTracker(TrajectoryTrackingParams(law='scheduled', beta=3.0))
-        >>> tracker.gains(1.0, 1.0)  # b = sqrt(1 + 3) = 2
-        (3.6, 3.0, 3.6)
-
-        """
-        p = self._params
-        if p.law == 'linear':
-            return p.k1, p.k2, p.k3
-        k13 = 2.0 * p.delta * math.sqrt(omega_ref * omega_ref + p.beta * v_ref * v_ref)
-        if p.law == 'scheduled':
-            return k13, p.beta * abs(v_ref), k13
-        return k13, p.k2, k13
-
-    def update(self, pose: ArrayLike, reference: PostureReference) -> TrackingCommand:
-        """
-        Return the velocity command for robot pose ``pose`` tracking ``reference``.
-
-        Error (9.63) by :func:`posture_error`; u1 = -k1 e1 for every law; u2 =
-        -k2 sgn(v_r) e2 - k3 e3 for ``'linear'`` (9.70) and ``'scheduled'`` (9.77), and
-        u2 = -k2 v_r (sin e3 / e3) e2 - k3 e3 for ``'nonlinear'`` (9.78); then
-        v = v_r cos e3 - u1 and ω = ω_r - u2 (9.66), each clipped to its limit.
+        Return the command for ``pose`` at ``time`` [s] and its errors to the reference.
 
         Parameters
         ----------
         pose : array_like, shape (3,)
-            Robot pose (x [m], y [m], θ [rad]) in the reference's frame, θ from the x axis.
-        reference : PostureReference
-            Reference posture and velocities at the same time.
+            Robot pose (x [m], y [m], θ [rad]) in the path frame, θ from the x axis.
+        time : float
+            Time of the pose [s].
+        speed : float, optional
+            Measured speed [m/s]; not used.
 
         Returns
         -------
-        TrackingCommand
-            Velocities, error and gains.
+        TrackerOutput
+            Velocities; ``cross_track``, ``heading_error`` and ``along_track`` (> 0 when the
+            robot lags) in the frame of the reference posture, whose position is the
+            ``target_point``; ``extras``: ``error`` (e1, e2, e3) of (9.63), ``gains``
+            (k1, k2, k3) and ``saturated`` of :func:`tracking_command` (absent once finished).
 
         Raises
         ------
         ValueError
-            If ``pose`` is not a finite (3,) vector.
-
-        >>> tracker = TrajectoryTracker(TrajectoryTrackingParams(law='linear'))
-        >>> cmd = tracker.update([0.0, 0.0, 0.0], PostureReference(0.0, 0.05, 0.0, 0.5, 0.2))
-        >>> cmd.linear, round(cmd.angular, 12)  # ω = 0.2 + k2 0.05 (k2 = 19)
-        (0.5, 1.15)
+            If ``pose`` is not a finite (3,) vector or ``time`` is not finite.
 
         """
+        x = check_pose(pose)
+        if not math.isfinite(time):
+            raise ValueError(f'time must be finite, got {time!r}')
         params = self._params
-        v_ref, omega_ref = reference.v, reference.omega
-        x, y, theta = _pose('pose', pose).tolist()
-        e1, e2, e3 = _error(x, y, theta, reference.x, reference.y, reference.theta)
-        k1, k2, k3 = self.gains(v_ref, omega_ref)
-        u1 = -k1 * e1
-        if params.law == 'nonlinear':
-            sinc = math.sin(e3) / e3 if e3 != 0.0 else 1.0
-            u2 = -k2 * v_ref * sinc * e2 - k3 * e3
-        else:
-            sign = (v_ref > 0.0) - (v_ref < 0.0)
-            u2 = -k2 * sign * e2 - k3 * e3
-        v = v_ref * math.cos(e3) - u1
-        omega = omega_ref - u2
-        v_clipped = min(max(v, -params.max_linear), params.max_linear)
-        omega_clipped = min(max(omega, -params.max_angular), params.max_angular)
-        saturated = v_clipped != v or omega_clipped != omega
-        return TrackingCommand(v_clipped, omega_clipped, np.array([e1, e2, e3]), (k1, k2, k3),
-                               saturated)
+        if self._reference is None:   # an untimed path starts where the robot starts
+            self._reference = TimedPath(self._path, self._times, float(params.reference_speed),
+                                        time, float(params.curvature_spacing), self._stations)
+        reference = self._reference.reference(time)
+        error_x, error_y = x[0] - reference.x, x[1] - reference.y
+        c, s = math.cos(reference.theta), math.sin(reference.theta)
+        cross = -s * error_x + c * error_y
+        behind = -(c * error_x + s * error_y)
+        heading = angle_error(float(x[2]), reference.theta)
+        target = np.array([reference.x, reference.y])
+        target.flags.writeable = False
+        if time >= self._reference.end_time and \
+                math.hypot(error_x, error_y) <= float(params.goal_tolerance):
+            self._finished = True
+        if self._finished:
+            return TrackerOutput(0.0, 0.0, cross, heading, behind, target, True)
+        command = tracking_command(x, reference, params)
+        return TrackerOutput(command.linear, command.angular, cross, heading, behind, target,
+                             False, {'error': command.error, 'gains': command.gains,
+                                     'saturated': command.saturated})

@@ -4,18 +4,19 @@ Path tracker node: follows a ``nav_msgs/Path`` with a law of book ch. 9 chosen b
 Laws (:mod:`robotica_ctrl.mobile.tracking_laws`): ``pure_pursuit`` (§9.3.1),
 ``adaptive_pure_pursuit`` (look-ahead by speed, curvature or error), ``quintic`` (§9.3.2),
 ``trajectory_tracking`` (Canudas de Wit, §9.4.2: linear, scheduled or nonlinear), ``frenet``
-(§9.4.3: linear or nonlinear) and ``gpc`` (§9.5); each reads its gains from the parameters
-``<law>.<gain>`` (descriptions, units and ranges with ``ros2 param describe``), which can be
-changed at run time (an invalid value is refused with the reason). ``open_loop`` plays the
-profile ``open_loop.times``, ``open_loop.linear`` and ``open_loop.angular`` against the pose's
-time stamp instead, without feedback or path (the book's Simulink examples, Ej. 4.8 and 4.9).
+(§9.4.3: linear or nonlinear), ``gpc`` (§9.5) and ``open_loop`` (a profile of (v, ω) played
+against the pose's time stamp without feedback, the book's Simulink examples, Ej. 4.8 and
+4.9); each reads its gains from the parameters ``<law>.<gain>`` (descriptions, units and
+ranges with ``ros2 param describe``), which can be changed at run time (an invalid value is
+refused with the reason).
 
 Topics: the pose in, from ``odom`` (nav_msgs/Odometry, the estimate) or, with ``pose_source``
 = ``ground_truth``, from ``ground_truth/odom`` (the simulator's truth); ``~/path``
 (nav_msgs/Path, transient-local) in: when its poses carry strictly increasing stamps they are
 the timing of a trajectory (trajectory tracking; otherwise it moves along the path at
 ``trajectory_tracking.reference_speed``). Out: ``cmd_vel`` (geometry_msgs/Twist) and
-``~/tracking_error`` (robotica_msgs/TrackingError, stamped with the pose it was computed from).
+``~/tracking_error`` (robotica_msgs/TrackingError, stamped with the pose it was computed from;
+none from a law that follows no path, whose errors are NaN: ``open_loop``).
 With ``command_type`` = ``steering`` (tricycle, bicycle, Ackermann) the command goes out on
 ``vehicle_command`` (robotica_msgs/VehicleCommand) instead: the law's speed v and the steering
 angle of its curvature, α = atan(l ω / v) (book (4.119), (4.121)), l = ``wheelbase``.
@@ -23,10 +24,10 @@ angle of its curvature, α = atan(l ω / v) (book (4.119), (4.121)), l = ``wheel
 With ``control_rate`` = 0 the law runs once per pose message (what a lockstep simulation needs:
 every step is answered exactly once); with ``control_rate`` > 0 it runs on a timer from the
 newest pose and brakes when that pose is older than ``pose_timeout``. The node commands a stop
-and says why when: there is no path yet, the path is finished, the robot is farther than
-``max_cross_track`` from the path (lost), the pose is stale, not finite or in another frame
-than the path (the ground truth's world frame is taken as the path's: the simulator starts the
-odometry frame at the true pose).
+and says why when: there is no path yet (for every law, ``open_loop`` too), the path is
+finished, the robot is farther than ``max_cross_track`` from the path (lost), the pose is stale,
+not finite (for a law that reads it) or in another frame than the path (the ground truth's
+world frame is taken as the path's: the simulator starts the odometry frame at the true pose).
 """
 import math
 
@@ -36,10 +37,9 @@ import numpy as np
 from rcl_interfaces.msg import SetParametersResult
 from rclpy.experimental import EventsExecutor
 from rclpy.node import Node
-from robotica_ctrl.mobile.open_loop import OpenLoopProfile
 from robotica_ctrl.mobile.path import PolylinePath
-from robotica_ctrl.mobile.tracking_laws import (LAW_PARAMETERS, LAWS, make_law,
-                                                steering_angle, TrackingLaw)
+from robotica_ctrl.mobile.tracker_base import TrackingLaw
+from robotica_ctrl.mobile.tracking_laws import LAW_PARAMETERS, make_law, steering_angle
 from robotica_kin.ros.convert import path_points, pose2d_from_odometry, stamp_to_seconds
 from robotica_kin.ros.entry_point import run_node
 from robotica_kin.ros.parameters import declare
@@ -47,7 +47,6 @@ from robotica_kin.ros.qos import (COMMAND_PUB_QOS, INPUT_QOS_OVERRIDES, LATCHED_
                                   STREAM_PUB_QOS, STREAM_SUB_QOS)
 from robotica_msgs.msg import TrackingError, VehicleCommand
 
-NODE_LAWS = (*LAWS, 'open_loop')
 COMMAND_TYPES = ('twist', 'steering')
 POSE_SOURCES = {'odom': 'odom', 'ground_truth': 'ground_truth/odom'}
 
@@ -58,12 +57,13 @@ class PathTrackerNode(Node):
     def __init__(self) -> None:
         super().__init__('path_tracker')
         self._law_name = declare(self, 'law', 'pure_pursuit', f'Tracking law: one of '
-                                 f'{NODE_LAWS}', read_only=True)
-        if self._law_name not in NODE_LAWS:
-            raise ValueError(f'law must be one of {NODE_LAWS}, got {self._law_name!r}')
+                                 f'{tuple(LAW_PARAMETERS)}', read_only=True)
+        if self._law_name not in LAW_PARAMETERS:
+            raise ValueError(f'law must be one of {tuple(LAW_PARAMETERS)}, got '
+                             f'{self._law_name!r}')
         self._gains = self._declare_gains(self._law_name)
-        if self._law_name in LAWS:   # refuse bad gains at start-up, not at the first path
-            make_law(self._law_name, PolylinePath([[0.0, 0.0], [1.0, 0.0]]), self._gains)
+        # Refuse bad gains at start-up, not at the first path.
+        make_law(self._law_name, PolylinePath([[0.0, 0.0], [1.0, 0.0]]), self._gains)
         self._command_type = declare(self, 'command_type', 'twist',
                                      f'Command: one of {COMMAND_TYPES} (cmd_vel Twist, or '
                                      'vehicle_command VehicleCommand for steered vehicles)',
@@ -86,13 +86,6 @@ class PathTrackerNode(Node):
         self._max_cross_track = declare(self, 'max_cross_track', 5.0,
                                         'Farther than this from the path [m] the robot is '
                                         'lost: stop', low=1e-3, high=1e6)
-        self._profile = OpenLoopProfile(
-            declare(self, 'open_loop.times', [0.0], 'open_loop: times of the profile rows [s]',
-                    read_only=True),
-            declare(self, 'open_loop.linear', [0.0], 'open_loop: forward speed v [m/s] per row',
-                    read_only=True),
-            declare(self, 'open_loop.angular', [0.0], 'open_loop: yaw rate [rad/s] per row',
-                    read_only=True))
         self._control_rate = declare(self, 'control_rate', 0.0,
                                      'Control rate [Hz]; 0: once per pose message',
                                      low=0.0, high=1000.0, read_only=True)
@@ -125,7 +118,7 @@ class PathTrackerNode(Node):
     def _declare_gains(self, law: str) -> dict:
         """Declare the parameters ``<law>.<gain>`` of the chosen law; return their values."""
         gains = {}
-        for name, spec in LAW_PARAMETERS.get(law, {}).items():
+        for name, spec in LAW_PARAMETERS[law].items():
             description = spec.description
             if spec.choices:
                 description += f': one of {spec.choices}'
@@ -139,7 +132,7 @@ class PathTrackerNode(Node):
     def _changes(self, parameters) -> dict:
         prefix = self._law_name + '.'
         return {p.name.removeprefix(prefix): p.value for p in parameters
-                if p.name.startswith(prefix) and self._law_name in LAWS}
+                if p.name.startswith(prefix)}
 
     def _validate_parameters(self, parameters) -> SetParametersResult:
         changes = self._changes(parameters)
@@ -167,8 +160,6 @@ class PathTrackerNode(Node):
 
     # -- inputs ------------------------------------------------------------------------------
     def _on_path(self, msg: Path) -> None:
-        if self._law_name not in LAWS:
-            return
         points = path_points(msg)
         times = np.array([stamp_to_seconds(p.header.stamp) for p in msg.poses])
         timed = times.size >= 2 and bool(np.all(np.diff(times) > 0.0))
@@ -228,9 +219,6 @@ class PathTrackerNode(Node):
 
     def _control(self, msg: Odometry) -> None:
         time = stamp_to_seconds(msg.header.stamp)
-        if self._law_name == 'open_loop':
-            self._publish_command(*self._profile.command(time))
-            return
         if self._law is None:
             self._stop('no path received on ~/path yet: holding still')
             return
@@ -249,13 +237,15 @@ class PathTrackerNode(Node):
         except ValueError as err:
             self._stop(f'pose refused ({err}): stopping')
             return
-        if abs(output.cross_track) > self._max_cross_track:
+        if abs(output.cross_track) > self._max_cross_track:   # never for NaN: no path
             self._stop(f'path lost: {abs(output.cross_track):.2f} m from it, more than '
                        f'max_cross_track ({self._max_cross_track} m): stopping')
         else:
             self._publish_command(output.linear, output.angular)
         if output.finished:
             self._report('finished', 'path finished: stopped at its end', warn=False)
+        if math.isnan(output.cross_track):   # a law that follows no path measures no error
+            return
         error = TrackingError(cross_track=output.cross_track, heading=output.heading_error,
                               along_track=output.along_track,
                               target_point=Point(x=float(output.target_point[0]),

@@ -100,20 +100,25 @@ def test_invalid_gain_is_refused_with_reason(tracker, call):
     assert 'min_approach_velocity' in result.reason
 
 
-def test_open_loop_profile_as_steering_commands(start_node, ros_node, spin, publish):
+def test_open_loop_profile_as_steering_commands(start_node, ros_node, spin, publish, call):
     # Ej. 4.8: v = 1 m/s, ω = 1 rad/s on a tricycle of l = 1.5 m: α = atan(l ω / v) = 56.31°.
-    # The profile ramps v from 1 to 2 m/s over 10 s: at t = 5 s, v = 1.5 m/s.
+    # The profile ramps v from 1 to 2 m/s over 10 s: at t = 5 s, v = 1.5 m/s. Like every law
+    # it starts with the first path; it publishes no tracking error (it follows none).
     node, executor = ros_node
-    start_node('robotica_ctrl', 'path_tracker', '-p', 'law:=open_loop',
-               '-p', 'command_type:=steering', '-p', 'wheelbase:=1.5',
+    start_node('robotica_ctrl', 'path_tracker', '-r', '/path_tracker/path:=/path',
+               '-p', 'law:=open_loop', '-p', 'command_type:=steering', '-p', 'wheelbase:=1.5',
                '-p', 'open_loop.times:=[0.0, 10.0]', '-p', 'open_loop.linear:=[1.0, 2.0]',
                '-p', 'open_loop.angular:=[1.0, 1.0]')
-    commands = []
+    commands, errors = [], []
     node.create_subscription(VehicleCommand, 'vehicle_command', commands.append, QOS)
+    node.create_subscription(TrackingError, '/path_tracker/tracking_error', errors.append, QOS)
     odom = node.create_publisher(Odometry, 'odom', QOS)
-    assert spin(executor, lambda: odom.get_subscription_count() > 0)
+    path = node.create_publisher(Path, '/path', LATCHED)
+    assert spin(executor, lambda: odom.get_subscription_count() > 0 and
+                path.get_subscription_count() > 0)
+    path.publish(_straight_path())
     msg = _odom(0.0, 0.0, 0.0)
-    assert publish(executor, odom, msg, lambda: commands)
+    assert publish(executor, odom, msg, lambda: commands and commands[-1].speed != 0.0)
     assert commands[-1].speed == pytest.approx(1.0, abs=1e-12)
     assert math.degrees(commands[-1].steering_angle) == pytest.approx(56.3099, abs=1e-4)
     msg.header.stamp.sec = 5
@@ -121,6 +126,15 @@ def test_open_loop_profile_as_steering_commands(start_node, ros_node, spin, publ
     assert publish(executor, odom, msg, lambda: len(commands) > n)
     assert commands[-1].speed == pytest.approx(1.5, abs=1e-12)
     assert commands[-1].steering_angle == pytest.approx(math.atan(1.5 / 1.5), abs=1e-12)
+    assert not errors
+    # Its profile is a gain like any other: checked when changed.
+    client = node.create_client(SetParameters, '/path_tracker/set_parameters')
+    value = ParameterValue(type=ParameterType.PARAMETER_DOUBLE_ARRAY, double_array_value=[1.0])
+    response = call(executor, client, SetParameters.Request(parameters=[
+        Parameter(name='open_loop.linear', value=value)]))
+    assert response is not None
+    assert not response.results[0].successful
+    assert 'same length' in response.results[0].reason
 
 
 def test_bad_open_loop_profile_is_refused(start_node, read_output):

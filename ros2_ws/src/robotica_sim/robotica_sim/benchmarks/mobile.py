@@ -61,7 +61,7 @@ def mobile_core_benchmark(duration: float = 60.0, seed: int = 1) -> list[Measure
     steps = round(duration / STEP)
     start = time.perf_counter()
     for _ in range(steps):
-        command = tracker.update(fusion.pose)
+        command = tracker.update(fusion.pose, sim.t)
         sim.set_command((command.linear, 0.0, command.angular), sim.t)
         sim.step()
         t, truth = sim.t, sim.pose

@@ -85,8 +85,6 @@ def recorded_topics(scenario: Scenario) -> tuple[str, ...]:
     topics = list(RECORDED_TOPICS)
     if scenario.robot.type in STEERED_TYPES:
         topics[topics.index('/cmd_vel')] = '/vehicle_command'
-    if scenario.tracker.law == 'open_loop':
-        topics.remove(TRACKING_ERROR_TOPIC)     # no path to be off from
     for sensor, sensor_topics in SENSOR_TOPICS.items():
         if getattr(scenario.sensors, sensor).enabled:
             topics.extend(sensor_topics)
@@ -236,12 +234,11 @@ def _plan_mobile(scenario: Scenario) -> list[NodeSpec]:
     pose = {'initial_pose.x': x0, 'initial_pose.y': y0, 'initial_pose.theta': theta0}
     points, times = reference_path(scenario)
     law = scenario.tracker.law
-    if law not in (*LAW_PARAMETERS, 'open_loop'):
-        raise ScenarioError(f'{where}: tracker.law must be one of '
-                            f'{(*LAW_PARAMETERS, "open_loop")}, got {law!r}')
-    specs = LAW_PARAMETERS.get(law, {})
-    known = set(specs) if specs else {'times', 'linear', 'angular'}   # open_loop's profile
-    unknown = set(scenario.tracker.gains) - known - set(TRACKER_NODE_KEYS)
+    if law not in LAW_PARAMETERS:
+        raise ScenarioError(f'{where}: tracker.law must be one of {tuple(LAW_PARAMETERS)}, '
+                            f'got {law!r}')
+    specs = LAW_PARAMETERS[law]
+    unknown = set(scenario.tracker.gains) - set(specs) - set(TRACKER_NODE_KEYS)
     if unknown:
         raise ScenarioError(f'{where}: tracker.{sorted(unknown)[0]} is not a gain of {law}; '
                             f'its gains: {sorted(specs)}')
@@ -250,11 +247,11 @@ def _plan_mobile(scenario: Scenario) -> list[NodeSpec]:
         if key in TRACKER_NODE_KEYS:
             gains[key] = value if isinstance(value, str) else \
                 _numbers(value, f'{where}: tracker.{key}')[0]
-        elif isinstance(value, str) and specs and specs[key].choices:
+        elif isinstance(value, str) and specs[key].choices:
             gains[f'{law}.{key}'] = value                        # e.g. frenet law: nonlinear
         else:
             numbers = _numbers(value, f'{where}: tracker.{key}')   # open_loop takes lists
-            if specs and isinstance(specs[key].default, int):
+            if isinstance(specs[key].default, int):
                 if numbers[0] != int(numbers[0]):
                     raise ScenarioError(f'{where}: tracker.{key} must be an integer, got '
                                         f'{value!r}')

@@ -213,6 +213,25 @@ def test_bool_gain_is_refused(tmp_path):
         plan_run(load_scenario(str(path)))
 
 
+def test_open_loop_is_planned_as_any_law(tmp_path):
+    # Ej. 4.9 (c): the profile's rows become the tracker's gains open_loop.<name>, lists of
+    # floats; the tracking-error topic is recorded as for every law (it stays empty).
+    scenario = load_scenario(str(SHIPPED / 'ej4_9c.yaml'))
+    tracker = by_name(plan_run(scenario))['path_tracker'].parameters
+    assert tracker['law'] == 'open_loop'
+    assert tracker['open_loop.times'] == [0.0, 30.0]
+    assert tracker['open_loop.linear'] == [0.125, 0.5]
+    assert tracker['open_loop.angular'] == [-0.25, 0.5]
+    assert TRACKING_ERROR_TOPIC in recorded_topics(scenario)
+    path = write(tmp_path, """\
+        path: {shape: circle, center: [0.0, 0.0], radius: 1.0}
+        tracker: {law: open_loop, times: [0.0], linear: [1.0], angular: [1.0],
+                  lookahead_distance: 1.0}
+        """)
+    with pytest.raises(ScenarioError, match='lookahead_distance is not a gain of open_loop'):
+        plan_run(load_scenario(str(path)))
+
+
 def test_ej8_4_plan_wires_the_arm_loop():
     scenario = load_scenario(str(SHIPPED / 'ej8_4.yaml'))
     nodes = by_name(plan_run(scenario))
