@@ -23,6 +23,7 @@ from robotica_ctrl.mobile.pure_pursuit import PurePursuit, PurePursuitParams
 from robotica_kin.mobile.odometry_fusion import OdometryFusion, OdometryFusionParams
 from robotica_kin.mobile.vehicles import vehicle_kinematics, VehicleGeometry
 from robotica_sim.benchmarks.measurement_row import MeasurementRow
+from robotica_sim.grading.metrics import rms
 from robotica_sim.sensors.compass import CompassModel, CompassParams, heading_noise_stddev
 from robotica_sim.sensors.encoder import EncoderModel, EncoderParams
 from robotica_sim.sensors.gps import gps_preset, GpsModel
@@ -76,11 +77,10 @@ def mobile_core_benchmark(duration: float = 60.0, seed: int = 1) -> list[Measure
             fusion.add_position(t, fix.enu[:2], fix.covariance[:2, :2])
         errors.append(math.hypot(*(fusion.pose[:2] - truth[:2])))
     wall = time.perf_counter() - start
-    rms = math.sqrt(sum(e * e for e in errors) / len(errors))
     return [
         MeasurementRow('core step', wall / steps * 1e6, 'µs',
                        'simulator, 2 encoders, gyro, compass, DGPS, EKF and pure pursuit'),
         MeasurementRow('core loop RTF', duration / wall, '×',
                        f'figure eight (r = 2 m) at 50 Hz, {duration:g} s simulated; EKF position '
-                       f'error RMS {rms:.2f} m'),
+                       f'error RMS {rms(errors):.2f} m'),
     ]
