@@ -28,6 +28,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from robotica_kin.angles import wrap_to_pi
 from robotica_kin.dh import as_dh_model, DHModel
+from robotica_kin.finite import finite_real
 from robotica_kin.robots import puma560
 from robotica_kin.transforms import ishomog, trinv
 from robotica_kin.types import Vector
@@ -49,25 +50,15 @@ RPR_POSE_TOL = 1e-9
 _STRUCTURE_TOL = 1e-9
 
 
-def _finite(name: str, value: float) -> float:
-    try:
-        number = float(value)
-    except (TypeError, ValueError) as error:
-        raise ValueError(f'{name} must be a real number, got {value!r}') from error
-    if not math.isfinite(number):
-        raise ValueError(f'{name} must be finite, got {value!r}')
-    return number
-
-
 def _length(name: str, value: float) -> float:
-    number = _finite(name, value)
+    number = finite_real(name, value)
     if number <= 0.0:
         raise ValueError(f'{name} must be a length > 0 m, got {value!r}')
     return number
 
 
 def _tolerance(tol: float) -> float:
-    number = _finite('tol', tol)
+    number = finite_real('tol', tol)
     if number < 0.0:
         raise ValueError(f'tol must be >= 0, got {tol!r}')
     return number
@@ -162,7 +153,7 @@ def ikine_planar_2r(l1: float, l2: float, x: float, y: float, *,
 
     """
     l1, l2 = _length('l1', l1), _length('l2', l2)
-    x, y, tol = _finite('x', x), _finite('y', y), _tolerance(tol)
+    x, y, tol = finite_real('x', x), finite_real('y', y), _tolerance(tol)
     solutions = _two_link(l1, l2, x, y, tol, 'goal')
     return np.asarray(wrap_to_pi(np.array(solutions, dtype=np.float64)))
 
@@ -207,7 +198,7 @@ def ikine_planar_2r_geometric(l1: float, l2: float, x: float, y: float, *,
 
     """
     l1, l2 = _length('l1', l1), _length('l2', l2)
-    x, y, tol = _finite('x', x), _finite('y', y), _tolerance(tol)
+    x, y, tol = finite_real('x', x), finite_real('y', y), _tolerance(tol)
     r = math.hypot(x, y)
     inner, outer = abs(l1 - l2), l1 + l2
     if r < inner - tol or r > outer + tol:
@@ -264,7 +255,7 @@ def ikine_planar_3r(l1: float, l2: float, x: float, y: float, phi: float, *,
            [ 90., -90.,   0.]])
 
     """
-    phi = _finite('phi', phi)
+    phi = finite_real('phi', phi)
     q12 = ikine_planar_2r(l1, l2, x, y, tol=tol)
     theta3 = wrap_to_pi(phi - q12[:, 0] - q12[:, 1])                          # (4.39)
     return np.column_stack([q12, theta3])
@@ -301,7 +292,7 @@ def ikine_rp(x: float, y: float) -> tuple[float, float]:
     (1.5707963267948966, 1.0)
 
     """
-    x, y = _finite('x', x), _finite('y', y)
+    x, y = finite_real('x', x), finite_real('y', y)
     d2 = math.hypot(x, y)                                                      # (4.25)
     if d2 == 0.0:
         return 0.0, 0.0
@@ -490,7 +481,7 @@ def ikine_puma560(T: ArrayLike, robot: DHModel | ArrayLike | None = None, *,
     model = puma560() if robot is None else as_dh_model(robot)
     sigma1, sigma3, sigma4, sigma5 = _check_puma_structure(model)
     T_0_t = _transform(T, 'ikine_puma560')
-    theta4_singular, tol = _finite('theta4_singular', theta4_singular), _tolerance(tol)
+    theta4_singular, tol = finite_real('theta4_singular', theta4_singular), _tolerance(tol)
     T_0_6 = T_0_t @ trinv(model.tool)
     px, py, pz = T_0_6[:3, 3]
     a2, a3 = float(model.a[2]), float(model.a[3])

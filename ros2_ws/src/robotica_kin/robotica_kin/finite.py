@@ -29,7 +29,8 @@ def finite_real(name: str, value: object) -> float:
     """
     Return ``value`` as a float if it is a finite real number (not a bool), else ValueError.
 
-    ``name`` names the value in the error message.
+    ``name`` names the value in the error message. A number of NumPy or a 0-d array of one is
+    accepted; a string, a bool or a sequence is not. The one scalar check of every core module.
 
     >>> finite_real('t', 2)
     2.0
@@ -38,6 +39,8 @@ def finite_real(name: str, value: object) -> float:
     ...
     ValueError: t must be a real number, got True
     """
+    if isinstance(value, np.ndarray) and value.shape == () and value.dtype.kind in 'fiu':
+        value = value.item()   # a 0-d array, e.g. one element of a computation
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
         raise ValueError(f'{name} must be a real number, got {value!r}')
     if not math.isfinite(value):

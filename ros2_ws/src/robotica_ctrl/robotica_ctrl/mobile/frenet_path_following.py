@@ -49,6 +49,7 @@ from numpy.typing import ArrayLike, NDArray
 from robotica_ctrl.mobile.path import PathProjection, PolylinePath
 from robotica_ctrl.mobile.tracker_base import check_pose, PathTrackerBase, TrackerOutput
 from robotica_kin.angles import wrap_to_pi
+from robotica_kin.finite import finite_real
 
 __all__ = [
     'characteristic_polynomial',
@@ -189,7 +190,7 @@ def frenet_error_rates(errors: FrenetErrors | ArrayLike, linear: float,
 
     """
     d, heading, c = _error_triple(errors)
-    v, w = _finite_scalar('linear', linear), _finite_scalar('angular', angular)
+    v, w = finite_real('linear', linear), finite_real('angular', angular)
     scale = 1.0 - c * d
     if not scale > 0.0:
         raise ValueError(f'1 - c d must be > 0 (vehicle short of the centre of curvature), '
@@ -291,9 +292,9 @@ def path_following_input(lateral_error: float, heading_error: float, linear: flo
     -1.0
 
     """
-    d = _finite_scalar('lateral_error', lateral_error)
-    heading = _finite_scalar('heading_error', heading_error)
-    v = _finite_scalar('linear', linear)
+    d = finite_real('lateral_error', lateral_error)
+    heading = finite_real('heading_error', heading_error)
+    v = finite_real('linear', linear)
     sinc = 1.0 if params.law == 'linear' else math.sin(heading) / heading if heading else 1.0
     return -params.k1 * v * d * sinc - params.k2 * abs(v) * heading
 
@@ -325,7 +326,7 @@ def frenet_angular_velocity(errors: FrenetErrors | ArrayLike, linear: float,
 
     """
     d, heading, c = _error_triple(errors)
-    v = _finite_scalar('linear', linear)
+    v = finite_real('linear', linear)
     u = path_following_input(d, heading, v, params)
     return u + v * c * math.cos(heading) / max(1.0 - c * d, MIN_FRENET_SCALE)
 
@@ -358,10 +359,10 @@ def in_convergence_region(lateral_error: float, heading_error: float, k1: float,
     (True, False)
 
     """
-    d = _finite_scalar('lateral_error', lateral_error)
-    heading = _finite_scalar('heading_error', heading_error)
+    d = finite_real('lateral_error', lateral_error)
+    heading = finite_real('heading_error', heading_error)
     gain = _positive('k1', k1)
-    c_max = _finite_scalar('max_path_curvature', max_path_curvature)
+    c_max = finite_real('max_path_curvature', max_path_curvature)
     if c_max < 0.0:
         raise ValueError(f'max_path_curvature must be >= 0, got {c_max!r}')
     return (d * d + heading * heading / gain) * c_max * c_max < 1.0
@@ -430,7 +431,7 @@ class FrenetPathFollower(PathTrackerBase[FrenetParams]):
         (1.570796326795, 0.0)
 
         """
-        return self._curvature(_finite_scalar('s', s))
+        return self._curvature(finite_real('s', s))
 
     def update(self, pose: ArrayLike, time: float, speed: float | None = None) -> TrackerOutput:
         """
@@ -517,7 +518,7 @@ def steering_state_matrices(linear_velocity: float, steering_time_constant: floa
     array([0., 0., 2.])
 
     """
-    v = _finite_scalar('linear_velocity', linear_velocity)
+    v = finite_real('linear_velocity', linear_velocity)
     tau = _positive('steering_time_constant', steering_time_constant)
     scale = 1.0 if wheelbase is None else 1.0 / _positive('wheelbase', wheelbase)
     a = np.array([[0.0, v, 0.0], [0.0, 0.0, v * scale], [0.0, 0.0, -1.0 / tau]])
@@ -555,9 +556,9 @@ def steering_feedback(lateral_error: float, heading_error: float, steering: floa
 
     """
     k = _gains(gains)
-    x = np.array([_finite_scalar('lateral_error', lateral_error),
-                  _finite_scalar('heading_error', heading_error),
-                  _finite_scalar('steering', steering)])
+    x = np.array([finite_real('lateral_error', lateral_error),
+                  finite_real('heading_error', heading_error),
+                  finite_real('steering', steering)])
     return -float(k @ x)
 
 
@@ -728,20 +729,9 @@ def _gains(gains: ArrayLike) -> NDArray[np.float64]:
     return k
 
 
-def _finite_scalar(name: str, value: float) -> float:
-    """Return ``value`` as a float, or raise ValueError if it is not a finite number."""
-    try:
-        x = float(value)
-    except (TypeError, ValueError):
-        raise ValueError(f'{name} must be a finite number, got {value!r}') from None
-    if not math.isfinite(x):
-        raise ValueError(f'{name} must be finite, got {value!r}')
-    return x
-
-
 def _positive(name: str, value: float) -> float:
     """Return ``value`` as a float, or raise ValueError if it is not positive and finite."""
-    x = _finite_scalar(name, value)
+    x = finite_real(name, value)
     if not x > 0.0:
         raise ValueError(f'{name} must be positive and finite, got {value!r}')
     return x

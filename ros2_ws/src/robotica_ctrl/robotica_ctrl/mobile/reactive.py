@@ -42,6 +42,7 @@ from typing import NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
+from robotica_kin.finite import finite_real
 
 __all__ = ['CorridorCentringParams', 'GeneralisedPotentialParams', 'SpeedModulationParams',
            'VelocityCommand', 'VirtualForceFieldParams', 'WallFollowingParams',
@@ -61,13 +62,6 @@ def _check_positive(params: object) -> None:
         value = getattr(params, field.name)
         if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0.0):
             raise ValueError(f'{field.name} must be positive and finite, got {value!r}')
-
-
-def _finite(value: float, name: str) -> float:
-    x = float(value)
-    if not math.isfinite(x):
-        raise ValueError(f'{name} must be finite, got {value!r}')
-    return x
 
 
 def _saturate(omega: float, limit: float) -> float:
@@ -124,7 +118,7 @@ def _line_following(xi: float, heading_error: float, v: float, k1: float, k2: fl
 
 
 def _check_angle(angle: float, name: str) -> float:
-    a = _finite(angle, name)
+    a = finite_real(name, angle)
     if abs(a) >= 0.5 * math.pi:
         raise ValueError(
             f'{name} must lie in (-pi/2, pi/2) (the forward direction), got {angle!r}')
@@ -169,7 +163,7 @@ def wall_following(distance_to_wall: float, wall_angle: float, side: str,
     0.2
 
     """
-    d = _finite(distance_to_wall, 'distance_to_wall')
+    d = finite_real('distance_to_wall', distance_to_wall)
     if d <= 0.0:
         raise ValueError(f'distance_to_wall must be positive, got {distance_to_wall!r}')
     angle = _check_angle(wall_angle, 'wall_angle')
@@ -214,8 +208,8 @@ def corridor_centring(left_distance: float, right_distance: float, corridor_angl
     VelocityCommand(linear=0.3, angular=0.0)
 
     """
-    dl = _finite(left_distance, 'left_distance')
-    dr = _finite(right_distance, 'right_distance')
+    dl = finite_real('left_distance', left_distance)
+    dr = finite_real('right_distance', right_distance)
     if dl <= 0.0 or dr <= 0.0:
         raise ValueError(f'distances must be positive, got {left_distance!r}, {right_distance!r}')
     angle = _check_angle(corridor_angle, 'corridor_angle')
@@ -388,7 +382,7 @@ def generalised_potential(obstacles_xy: ArrayLike, goal_xy: ArrayLike, speed: fl
     """
     pts = _points(obstacles_xy)
     goal = _goal(goal_xy)
-    v = _finite(speed, 'speed')
+    v = finite_real('speed', speed)
     if v < 0.0:
         raise ValueError(f'speed must be >= 0, got {speed!r}')
     goal_distance = float(np.hypot(goal[0], goal[1]))
@@ -473,7 +467,7 @@ def speed_modulation(v_desired: float, nearest_obstacle_distance: float,
     0.5
 
     """
-    vd = _finite(v_desired, 'v_desired')
+    vd = finite_real('v_desired', v_desired)
     d = float(nearest_obstacle_distance)
     if math.isnan(d) or d < 0.0:
         raise ValueError(

@@ -52,6 +52,7 @@ from robotica_ctrl.mobile.path import PolylinePath
 from robotica_ctrl.mobile.quintic_tracker import path_curvature, path_heading
 from robotica_ctrl.mobile.tracker_base import (angle_error, check_pose, replace_gains,
                                                TrackerOutput)
+from robotica_kin.finite import finite_real
 
 __all__ = ['LAWS', 'PostureReference', 'TimedPath', 'TrackingCommand', 'TrajectoryTracker',
            'TrajectoryTrackingParams', 'design_linear_gains', 'posture_error',
@@ -59,17 +60,6 @@ __all__ = ['LAWS', 'PostureReference', 'TimedPath', 'TrackingCommand', 'Trajecto
 
 LAWS = ('linear', 'scheduled', 'nonlinear')
 """Names of the control laws of :class:`TrajectoryTrackingParams`."""
-
-
-def _finite(name: str, value: float) -> float:
-    """Return ``value`` as a float, or raise ValueError naming ``name`` if it is not finite."""
-    try:
-        result = float(value)
-    except (TypeError, ValueError):
-        raise ValueError(f'{name} must be a finite number, got {value!r}') from None
-    if not math.isfinite(result):
-        raise ValueError(f'{name} must be a finite number, got {value!r}')
-    return result
 
 
 def _pose(name: str, pose: ArrayLike) -> NDArray[np.float64]:
@@ -166,10 +156,10 @@ def design_linear_gains(
     (2.0, 6.0, 2.0)
 
     """
-    delta = _finite('delta', delta)
-    b = _finite('b', b)
-    v_ref = _finite('v_ref', v_ref)
-    omega_ref = _finite('omega_ref', omega_ref)
+    delta = finite_real('delta', delta)
+    b = finite_real('b', b)
+    v_ref = finite_real('v_ref', v_ref)
+    omega_ref = finite_real('omega_ref', omega_ref)
     if not delta > 0.0:
         raise ValueError(f'delta must be > 0, got {delta!r}')
     if v_ref == 0.0:
@@ -265,7 +255,8 @@ class PostureReference:
 
     def __post_init__(self) -> None:
         for field in fields(self):
-            object.__setattr__(self, field.name, _finite(field.name, getattr(self, field.name)))
+            value = finite_real(field.name, getattr(self, field.name))
+            object.__setattr__(self, field.name, value)
 
     @property
     def pose(self) -> NDArray[np.float64]:

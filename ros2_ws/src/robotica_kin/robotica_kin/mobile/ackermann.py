@@ -22,7 +22,7 @@ and its inner wheel on the left.
 from dataclasses import dataclass
 import math
 
-from robotica_kin.mobile.unicycle import _finite
+from robotica_kin.finite import finite_real
 
 __all__ = [
     'AckermannParams',
@@ -70,7 +70,7 @@ def _axle_angle(angle: float) -> float:
 
 
 def _equivalent(steering_angle: float) -> float:
-    angle = _finite(steering_angle, 'steering_angle')
+    angle = finite_real('steering_angle', steering_angle)
     if not abs(angle) <= _HALF_PI:
         raise ValueError(f'steering_angle must be in [-π/2, π/2] rad, got {steering_angle!r}')
     return angle
@@ -197,7 +197,7 @@ def ackermann_equivalent_angle(params: AckermannParams, left: float, right: floa
     0.5
 
     """
-    theta_l, theta_r = _finite(left, 'left'), _finite(right, 'right')
+    theta_l, theta_r = finite_real('left', left), finite_real('right', right)
     return _axle_angle(math.atan2(2.0 * math.sin(theta_l) * math.sin(theta_r),
                                   math.sin(theta_l + theta_r)))
 
@@ -273,7 +273,7 @@ def ackermann_rear_wheel_speeds(
     (3.0, 5.0)
 
     """
-    v_, omega_ = _finite(v, 'v'), _finite(omega, 'omega')
+    v_, omega_ = finite_real('v', v), finite_real('omega', omega)
     half = 0.5 * params.track * omega_
     return (v_ - half) / params.wheel_radius, (v_ + half) / params.wheel_radius
 
@@ -315,7 +315,7 @@ def ackermann_front_wheel_speeds(
     [5.0, 6.4031]
 
     """
-    v_, omega_ = _finite(v, 'v'), _finite(omega, 'omega')
+    v_, omega_ = finite_real('v', v), finite_real('omega', omega)
     speeds = []
     for y_wheel in (0.5 * params.track, -0.5 * params.track):
         vx, vy = v_ - omega_ * y_wheel, omega_ * params.wheelbase

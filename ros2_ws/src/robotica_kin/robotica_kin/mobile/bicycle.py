@@ -17,7 +17,8 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike
 
-from robotica_kin.mobile.unicycle import _finite, _positive, _vector, forward_direction
+from robotica_kin.finite import finite_real
+from robotica_kin.mobile.unicycle import _positive, _vector, forward_direction
 from robotica_kin.types import Vector
 
 __all__ = [
@@ -32,7 +33,7 @@ _HALF_PI = 0.5 * math.pi
 
 
 def _steering(steering_angle: float) -> float:
-    alpha = _finite(steering_angle, 'steering_angle')
+    alpha = finite_real('steering_angle', steering_angle)
     if not abs(alpha) < _HALF_PI:
         raise ValueError(f'steering_angle must be in (-π/2, π/2) rad, got {steering_angle!r}')
     return alpha
@@ -100,7 +101,7 @@ def steering_from_curvature(curvature: float, wheelbase: float) -> float:
     56.31
 
     """
-    return math.atan(_positive(wheelbase, 'wheelbase') * _finite(curvature, 'curvature'))
+    return math.atan(_positive(wheelbase, 'wheelbase') * finite_real('curvature', curvature))
 
 
 def bicycle_direct(
@@ -136,7 +137,7 @@ def bicycle_direct(
     (2.0, 0.5)
 
     """
-    v_ = _finite(v, 'v')
+    v_ = finite_real('v', v)
     return v_, v_ * curvature_from_steering(steering_angle, wheelbase)
 
 
@@ -174,7 +175,7 @@ def bicycle_inverse(v: float, omega: float, wheelbase: float) -> tuple[float, fl
     (2.0, 0.5)
 
     """
-    v_, omega_ = _finite(v, 'v'), _finite(omega, 'omega')
+    v_, omega_ = finite_real('v', v), finite_real('omega', omega)
     length = _positive(wheelbase, 'wheelbase')
     if v_ == 0.0:
         if omega_ != 0.0:

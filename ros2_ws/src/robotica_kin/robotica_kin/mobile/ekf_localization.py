@@ -32,6 +32,7 @@ import numbers
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from robotica_kin.angles import wrap_to_pi
+from robotica_kin.finite import finite_real
 from robotica_kin.types import Pose2D, Vector
 from scipy.special import gammaincinv
 
@@ -55,20 +56,8 @@ WHITE_VARIANCE_FLOOR_RATIO = 1e-2
 # --- validation helpers -------------------------------------------------------------------
 
 
-def _finite_scalar(value: float, name: str) -> float:
-    if isinstance(value, (bool, str, bytes)):
-        raise ValueError(f'{name} must be a real number, got {value!r}')
-    try:
-        number = float(value)
-    except (TypeError, ValueError):
-        raise ValueError(f'{name} must be a real number, got {value!r}') from None
-    if not math.isfinite(number):
-        raise ValueError(f'{name} must be finite, got {value!r}')
-    return number
-
-
 def _nonnegative_scalar(value: float, name: str, unit: str) -> float:
-    number = _finite_scalar(value, name)
+    number = finite_real(name, value)
     if number < 0.0:
         raise ValueError(f'{name} must be >= 0 {unit}, got {value!r}')
     return number
@@ -172,8 +161,8 @@ class OdometryNoise:
             On a non-finite input or a negative ``heading_variance``.
 
         """
-        distance = abs(_finite_scalar(delta_distance, 'delta_distance'))
-        turn = abs(_finite_scalar(delta_heading, 'delta_heading'))
+        distance = abs(finite_real('delta_distance', delta_distance))
+        turn = abs(finite_real('delta_heading', delta_heading))
         if heading_variance is None:
             var_heading = self.k_heading * distance + self.k_turn * turn
         else:
@@ -215,7 +204,7 @@ def chi_square_threshold(probability: float, dof: int) -> float:
     3.8415
 
     """
-    p = _finite_scalar(probability, 'gate_probability')
+    p = finite_real('gate_probability', probability)
     if not 0.0 < p <= 1.0:
         raise ValueError(f'gate_probability must be in (0, 1], got {probability!r}')
     if isinstance(dof, bool) or not isinstance(dof, int) or dof < 1:
@@ -242,8 +231,8 @@ def _chord_factor(half_turn: float) -> tuple[float, float]:
 
 
 def _increment(delta_distance: float, delta_heading: float) -> tuple[float, float]:
-    return (_finite_scalar(delta_distance, 'delta_distance'),
-            _finite_scalar(delta_heading, 'delta_heading'))
+    return (finite_real('delta_distance', delta_distance),
+            finite_real('delta_heading', delta_heading))
 
 
 def _arc(x: float, y: float, theta: float, delta_s: float, delta_theta: float) -> Pose2D:
@@ -640,7 +629,7 @@ class EkfLocalization:
         q = self._noise.covariance(delta_distance, delta_heading, heading_variance)
         delta_s, delta_theta = _increment(delta_distance, delta_heading)
         if dt is not None:
-            interval = _finite_scalar(dt, 'dt')
+            interval = finite_real('dt', dt)
             if not interval > 0.0:
                 raise ValueError(f'dt must be > 0 s, got {dt!r}')
         elif self._size == 5:
@@ -758,7 +747,7 @@ class EkfLocalization:
             the state is then unchanged.
 
         """
-        z = _finite_scalar(z_theta, 'z_theta')
+        z = finite_real('z_theta', z_theta)
         noise = np.array([[_nonnegative_scalar(variance, 'variance', 'rad²')]])
         innovation = np.array([wrap_to_pi(z - float(self._state[2]))])
         observation = np.zeros((1, self._size))

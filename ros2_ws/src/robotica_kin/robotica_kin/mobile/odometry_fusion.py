@@ -33,6 +33,7 @@ from typing import NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from robotica_kin.finite import finite_real
 from robotica_kin.mobile.ekf_localization import (EkfLocalization, increment_between_poses,
                                                   OdometryNoise)
 from robotica_kin.mobile.odometry import odometry_increment, ODOMETRY_METHODS
@@ -347,7 +348,7 @@ class OdometryFusion:
         for name, count in (('left_ticks', left_ticks), ('right_ticks', right_ticks)):
             if isinstance(count, bool) or not isinstance(count, numbers.Integral):
                 raise ValueError(f'{name} must be an integer, got {count!r}')
-        reading = _Reading(left_ticks, right_ticks, _finite(t, 't'),
+        reading = _Reading(left_ticks, right_ticks, finite_real('t', t),
                            metres_per_tick(self._params.wheel_radius, ticks_per_revolution))
         if self._readings and abs(self._readings[-1].t - reading.t) <= STAMP_TOLERANCE:
             self._readings[-1] = reading
@@ -415,7 +416,7 @@ class OdometryFusion:
 
         """
         value = np.array(position, dtype=np.float64)
-        return self._defer(_Measurement(_finite(t, 't'), 'position', value,
+        return self._defer(_Measurement(finite_real('t', t), 'position', value,
                                         np.array(covariance, dtype=np.float64)))
 
     def add_heading(self, t: float, yaw: float, variance: float) -> list[FusionEvent]:
@@ -446,7 +447,7 @@ class OdometryFusion:
             If ``t`` is not finite.
 
         """
-        t = _finite(t, 't')
+        t = finite_real('t', t)
         self._newest_heading_t = t if self._newest_heading_t is None else max(
             t, self._newest_heading_t)
         if not (math.isfinite(yaw) and math.isfinite(variance) and variance > 0.0):
@@ -669,9 +670,3 @@ class OdometryFusion:
     def rejections(self) -> int:
         """Measurements rejected by the innovation gate since construction or :meth:`reset`."""
         return self._rejections
-
-
-def _finite(value: float, name: str) -> float:
-    if not math.isfinite(value):
-        raise ValueError(f'{name} must be finite, got {value!r}')
-    return float(value)

@@ -29,7 +29,8 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike
 
-from robotica_kin.mobile.unicycle import _finite, _vector, forward_direction
+from robotica_kin.finite import finite_real
+from robotica_kin.mobile.unicycle import _vector, forward_direction
 from robotica_kin.types import Vector
 
 __all__ = [
@@ -111,7 +112,7 @@ def _omni_matrix(params: OmniThreeParams) -> Vector:
 
 
 def _twist(vx: float, vy: float, omega: float) -> Vector:
-    return np.array([_finite(vx, 'vx'), _finite(vy, 'vy'), _finite(omega, 'omega')])
+    return np.array([finite_real('vx', vx), finite_real('vy', vy), finite_real('omega', omega)])
 
 
 def omni_three_inverse(params: OmniThreeParams, vx: float, vy: float, omega: float) -> Vector:

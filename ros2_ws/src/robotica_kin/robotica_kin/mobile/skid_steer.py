@@ -20,7 +20,7 @@ The guide point is the vehicle's geometric centre, ``base_link`` x forward, y le
 from dataclasses import dataclass
 import math
 
-from robotica_kin.mobile.unicycle import _finite
+from robotica_kin.finite import finite_real
 
 __all__ = ['SkidSteerParams', 'skid_steer_direct', 'skid_steer_inverse']
 
@@ -92,7 +92,8 @@ def skid_steer_direct(
     (0.0, 0.4)
 
     """
-    w_left, w_right = _finite(omega_left, 'omega_left'), _finite(omega_right, 'omega_right')
+    w_left = finite_real('omega_left', omega_left)
+    w_right = finite_real('omega_right', omega_right)
     rim = (1.0 - params.longitudinal_slip) * params.wheel_radius
     return rim * (w_left + w_right) / 2.0, rim * (w_right - w_left) / params.effective_track
 
@@ -132,7 +133,7 @@ def skid_steer_inverse(
     (-2.0, 2.0)
 
     """
-    v_, omega_ = _finite(v, 'v'), _finite(omega, 'omega')
+    v_, omega_ = finite_real('v', v), finite_real('omega', omega)
     rim = (1.0 - params.longitudinal_slip) * params.wheel_radius
     half = 0.5 * params.effective_track * omega_
     return (v_ - half) / rim, (v_ + half) / rim

@@ -18,7 +18,8 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike
 
-from robotica_kin.mobile.unicycle import _finite, _vector, forward_direction, path_heading
+from robotica_kin.finite import finite_real
+from robotica_kin.mobile.unicycle import _vector, forward_direction, path_heading
 from robotica_kin.types import Vector
 
 __all__ = [
@@ -90,8 +91,8 @@ def tricycle_direct(
     (0.0, 2.0)
 
     """
-    v_t = params.wheel_radius * _finite(wheel_speed, 'wheel_speed')
-    alpha = _finite(steering_angle, 'steering_angle')
+    v_t = params.wheel_radius * finite_real('wheel_speed', wheel_speed)
+    alpha = finite_real('steering_angle', steering_angle)
     return v_t * math.cos(alpha), v_t * math.sin(alpha) / params.wheelbase
 
 
@@ -133,7 +134,7 @@ def tricycle_inverse(
     (1.8028, 56.31)
 
     """
-    v_, omega_ = _finite(v, 'v'), _finite(omega, 'omega')
+    v_, omega_ = finite_real('v', v), finite_real('omega', omega)
     sign = -1.0 if v_ < 0.0 else 1.0
     lateral = params.wheelbase * omega_  # v_t sin α
     alpha = math.atan2(sign * lateral, abs(v_))
@@ -255,7 +256,7 @@ def tricycle_inverse_velocity(
     if rates.shape not in ((3,), (4,)):
         raise ValueError(f'pose_dot must have shape (3,) or (4,), got {rates.shape}')
     rates = _vector(rates, rates.shape[0], 'pose_dot')
-    alpha = _finite(steering_angle, 'steering_angle')
+    alpha = finite_real('steering_angle', steering_angle)
     cx, cy = forward_direction(heading, convention)
     length, cos_a, sin_a = params.wheelbase, math.cos(alpha), math.sin(alpha)
     along = cx * rates[0] + cy * rates[1]  # velocity along the vehicle's axis

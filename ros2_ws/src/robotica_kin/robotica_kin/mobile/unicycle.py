@@ -18,7 +18,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from robotica_kin.angles import wrap_to_pi
-from robotica_kin.finite import all_finite
+from robotica_kin.finite import all_finite, finite_real
 from robotica_kin.types import Pose2D, Vector
 
 __all__ = [
@@ -45,13 +45,6 @@ def _vector(value: ArrayLike, size: int, name: str) -> Vector:
     if not all_finite(array):
         raise ValueError(f'{name} must be finite, got {array!r}')
     return array
-
-
-def _finite(value: float, name: str) -> float:
-    number = float(value)
-    if not math.isfinite(number):
-        raise ValueError(f'{name} must be finite, got {value!r}')
-    return number
 
 
 def _positive(value: float, name: str) -> float:
@@ -93,7 +86,7 @@ def forward_direction(heading: float, convention: str = 'rep103') -> tuple[float
     (-0.0, 1.0)
 
     """
-    angle = _finite(heading, 'heading')
+    angle = finite_real('heading', heading)
     if convention == 'rep103':
         return math.cos(angle), math.sin(angle)
     if convention == 'book':
@@ -190,7 +183,7 @@ def arc_update(
 
     """
     x, y, heading = _vector(pose, 3, 'pose')
-    v_, omega_, dt_ = (_finite(v, 'v'), _finite(omega, 'omega'), _finite(dt, 'dt'))
+    v_, omega_, dt_ = (finite_real('v', v), finite_real('omega', omega), finite_real('dt', dt))
     if dt_ < 0.0:
         raise ValueError(f'dt must be >= 0 s, got {dt!r}')
     distance, turn = v_ * dt_, omega_ * dt_
@@ -232,7 +225,7 @@ def instantaneous_centre_of_rotation(v: float, omega: float) -> tuple[float, flo
     True
 
     """
-    v_, omega_ = _finite(v, 'v'), _finite(omega, 'omega')
+    v_, omega_ = finite_real('v', v), finite_real('omega', omega)
     if omega_ == 0.0:
         return None
     return 0.0, v_ / omega_
@@ -318,7 +311,7 @@ def synchronous_drive_direct(
 
     """
     c = _positive(wheel_radius, 'wheel_radius')
-    return c * _finite(wheel_speed, 'wheel_speed'), _finite(steering_rate, 'steering_rate')
+    return c * finite_real('wheel_speed', wheel_speed), finite_real('steering_rate', steering_rate)
 
 
 def synchronous_drive_inverse(
@@ -356,7 +349,7 @@ def synchronous_drive_inverse(
 
     """
     c = _positive(wheel_radius, 'wheel_radius')
-    return _finite(v, 'v') / c, _finite(omega, 'omega')
+    return finite_real('v', v) / c, finite_real('omega', omega)
 
 
 def _path_derivative(value: ArrayLike, name: str) -> tuple[float, float]:
