@@ -28,13 +28,11 @@ import math
 import numpy as np
 from rclpy.experimental import EventsExecutor
 from rclpy.node import Node
-from rclpy.parameter import Parameter
 from robotica_ctrl.joint_control import (ComputedTorque, ComputedTorqueGains, DecoupledPID,
                                          JointControlLaw, JointReference, JointState, PIDGains)
 from robotica_ctrl.trajectory.sampled_trajectory import SampledTrajectory
-from robotica_kin.robots import ROBOT_NAMES
 from robotica_kin.ros.convert import seconds_to_stamp, stamp_to_seconds
-from robotica_kin.ros.dh_messages import dynamic_robot_from_parameters
+from robotica_kin.ros.dh_messages import declare_robot
 from robotica_kin.ros.entry_point import run_node
 from robotica_kin.ros.parameters import declare
 from robotica_kin.ros.qos import (COMMAND_PUB_QOS, INPUT_QOS_OVERRIDES, LATCHED_QOS,
@@ -73,17 +71,8 @@ class JointControllerNode(Node):
                                  f'Control law: one of {LAWS}', read_only=True)
         if self._law_name not in LAWS:
             raise ValueError(f'law must be one of {LAWS}, got {self._law_name!r}')
-        robot = declare(self, 'robot', 'puma560',
-                        f"The controller's model, one of {ROBOT_NAMES} with dynamics; empty: "
-                        'use dyn_table', read_only=True)
-        dyn_table = declare(self, 'dyn_table', Parameter.Type.DOUBLE_ARRAY,
-                            "The controller's model as a HEMERO dyn table (n x 20: DH row, mass, "
-                            'centre of mass, inertia, Jm, G, B, Tc+, Tc-), flattened row-major; '
-                            "used when robot is ''", read_only=True)
-        names = declare(self, 'joint_names', Parameter.Type.STRING_ARRAY,
-                        "Joint order of states and torques; default the model's "
-                        '(joint_1 … joint_n)', read_only=True)
-        self._robot = dynamic_robot_from_parameters(robot, dyn_table, names)
+        self._robot = declare_robot(self, "The controller's model", dynamics=True,
+                                    joint_names='the order of states and torques')
         grav = declare(self, 'gravity', [0.0, 0.0, -9.81],
                        'Gravity acceleration [m/s^2] in the base frame {0} for the model',
                        read_only=True)

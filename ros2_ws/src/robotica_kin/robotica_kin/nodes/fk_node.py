@@ -17,11 +17,9 @@ import math
 
 from geometry_msgs.msg import PoseArray, PoseStamped
 from rclpy.node import Node
-from rclpy.parameter import Parameter
 from robotica_kin.forward_kinematics import fkine, link_frames
-from robotica_kin.robots import ROBOT_NAMES
-from robotica_kin.ros.dh_messages import (dh_table_message, pose_message, request_robot,
-                                          robot_from_parameters)
+from robotica_kin.ros.dh_messages import (declare_robot, dh_table_message, pose_message,
+                                          request_robot)
 from robotica_kin.ros.entry_point import run_node
 from robotica_kin.ros.parameters import declare
 from robotica_kin.ros.qos import LATCHED_QOS, STREAM_PUB_QOS, STREAM_SUB_QOS
@@ -37,19 +35,10 @@ class ForwardKinematicsNode(Node):
 
     def __init__(self) -> None:
         super().__init__('fk_node')
-        robot = declare(self, 'robot', 'puma560',
-                        f'Built-in robot, one of {ROBOT_NAMES}; empty: use dh_table',
-                        read_only=True)
-        dh_table = declare(self, 'dh_table', Parameter.Type.DOUBLE_ARRAY,
-                           'HEMERO DH table [alpha_{i-1} a_{i-1} theta_i d_i sigma_i] * n '
-                           '[rad, m], book Table 4.2, flattened row-major; used when robot '
-                           "is ''", read_only=True)
-        joint_names = declare(self, 'joint_names', Parameter.Type.STRING_ARRAY,
-                              'Joint names in joint_states, one per DH row; default the '
-                              "model's (joint_1 … joint_n)", read_only=True)
+        self._robot = declare_robot(self, 'Built-in robot',
+                                    joint_names='one per DH row, as in joint_states')
         self._frame = declare(self, 'base_frame_id', 'link_0',
                               'Frame {0} of the robot: frame_id of every pose', read_only=True)
-        self._robot = robot_from_parameters(robot, dh_table, joint_names)
 
         self._pose_pub = self.create_publisher(PoseStamped, '~/end_effector_pose',
                                                STREAM_PUB_QOS)

@@ -14,12 +14,9 @@ import math
 
 from numpy.linalg import LinAlgError
 from rclpy.node import Node
-from rclpy.parameter import Parameter
 from robotica_kin.ik import ikine_solve
-from robotica_kin.robots import ROBOT_NAMES
-from robotica_kin.ros.dh_messages import pose_matrix, request_robot, robot_from_parameters
+from robotica_kin.ros.dh_messages import declare_robot, pose_matrix, request_robot
 from robotica_kin.ros.entry_point import run_node
-from robotica_kin.ros.parameters import declare
 from robotica_msgs.srv import InverseKinematics
 
 DEFAULT_STOL = 1e-6      # pose-error tolerance used when a request gives 0
@@ -43,14 +40,7 @@ class InverseKinematicsServer(Node):
 
     def __init__(self) -> None:
         super().__init__('ik_server')
-        robot = declare(self, 'robot', 'puma560',
-                        f'Default robot of the requests, one of {ROBOT_NAMES}; empty: use '
-                        'dh_table', read_only=True)
-        dh_table = declare(self, 'dh_table', Parameter.Type.DOUBLE_ARRAY,
-                           'HEMERO DH table [alpha_{i-1} a_{i-1} theta_i d_i sigma_i] * n '
-                           '[rad, m], book Table 4.2, flattened row-major; used when robot '
-                           "is ''", read_only=True)
-        self._robot = robot_from_parameters(robot, dh_table)
+        self._robot = declare_robot(self, 'Default robot of the requests')
         self.create_service(InverseKinematics, '~/inverse_kinematics', self._on_request)
         self.get_logger().info(f'default robot {self._robot.name!r} ({self._robot.n} joints)')
 

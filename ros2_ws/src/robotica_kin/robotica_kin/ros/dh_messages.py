@@ -13,8 +13,11 @@ from typing import Optional, Sequence
 from geometry_msgs.msg import Point, Pose, Quaternion
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
+from rclpy.node import Node
+from rclpy.parameter import Parameter
 from robotica_kin.dh import dh_model, DHModel
 from robotica_kin.robots import robot_by_name, ROBOT_NAMES
+from robotica_kin.ros.parameters import declare
 from robotica_kin.transforms import ishomog, q2tr, tr2q
 from robotica_msgs.msg import DHParameter, DHTable
 
@@ -254,3 +257,38 @@ def request_robot(robot: str, dh: DHTable, default: DHModel) -> DHModel:
     if dh.links:
         return dh_model_from_message(dh)
     return default
+
+
+_DH_TABLE = ('HEMERO DH table [alpha_{i-1} a_{i-1} theta_i d_i sigma_i] * n [rad, m], book '
+             "Table 4.2, flattened row-major; used when robot is ''")
+_DYN_TABLE = ('HEMERO dyn table (n x 20: DH row, mass, centre of mass, inertia, Jm, G, B, Tc+, '
+              "Tc-), flattened row-major; used when robot is ''")
+
+
+def declare_robot(node: Node, role: str, *, dynamics: bool = False,
+                  joint_names: str | None = None, joint_limits: bool = False) -> DHModel:
+    """
+    Declare a node's robot parameters (all read-only) and return its robot.
+
+    ``robot`` (a built-in name, default ``puma560``) and ``dh_table`` or, with ``dynamics``,
+    ``dyn_table``; ``joint_names`` when a description of their order is given;
+    ``joint_limits`` [rad | m] if asked. ``role`` says what the robot is to the node
+    ("Built-in robot", "The controller's model"). Raises ValueError as
+    :func:`robot_from_parameters` and :func:`dynamic_robot_from_parameters`, which
+    :func:`~robotica_kin.ros.entry_point.run_node` reports as invalid configuration.
+    """
+    table_name = 'dyn_table' if dynamics else 'dh_table'
+    robot = declare(node, 'robot', 'puma560',
+                    f'{role}, one of {ROBOT_NAMES}{" with dynamics" if dynamics else ""}; '
+                    f'empty: use {table_name}', read_only=True)
+    table = declare(node, table_name, Parameter.Type.DOUBLE_ARRAY,
+                    _DYN_TABLE if dynamics else _DH_TABLE, read_only=True)
+    names = None if joint_names is None else declare(
+        node, 'joint_names', Parameter.Type.STRING_ARRAY,
+        f"Joint names, {joint_names}; default the model's (joint_1 … joint_n)", read_only=True)
+    if not dynamics:
+        return robot_from_parameters(robot, table, names)
+    limits = None if not joint_limits else declare(
+        node, 'joint_limits', Parameter.Type.DOUBLE_ARRAY,
+        "[low_1, high_1, …] [rad | m]; default the model's", read_only=True)
+    return dynamic_robot_from_parameters(robot, table, names, limits)

@@ -20,9 +20,8 @@ import numpy as np
 from rclpy.experimental import EventsExecutor
 from rclpy.parameter import Parameter
 from robotica_kin.dynamics import DEFAULT_GRAVITY
-from robotica_kin.robots import ROBOT_NAMES
 from robotica_kin.ros.convert import seconds_to_stamp
-from robotica_kin.ros.dh_messages import dynamic_robot_from_parameters
+from robotica_kin.ros.dh_messages import declare_robot
 from robotica_kin.ros.entry_point import run_node
 from robotica_kin.ros.parameters import declare
 from robotica_kin.ros.qos import COMMAND_QOS, STREAM_PUB_QOS
@@ -48,19 +47,8 @@ class ArmSimulatorNode(SteppedSimulatorNode):
     def __init__(self) -> None:
         super().__init__('arm_simulator', default_step_period=1e-3,
                          command_topic='joint_torques')
-        robot = declare(self, 'robot', 'puma560',
-                        f'Built-in robot, one of {ROBOT_NAMES} with dynamics; empty: use '
-                        'dyn_table', read_only=True)
-        dyn_table = declare(self, 'dyn_table', Parameter.Type.DOUBLE_ARRAY,
-                            'HEMERO dyn table (n x 20: DH row, mass, centre of mass, inertia, '
-                            "Jm, G, B, Tc+, Tc-), flattened row-major; used when robot is ''",
-                            read_only=True)
-        names = declare(self, 'joint_names', Parameter.Type.STRING_ARRAY,
-                        "Joint names, in torque order; default the model's (joint_1 … joint_n)",
-                        read_only=True)
-        limits = declare(self, 'joint_limits', Parameter.Type.DOUBLE_ARRAY,
-                         "[low_1, high_1, …] [rad | m]; default the model's", read_only=True)
-        self._robot = dynamic_robot_from_parameters(robot, dyn_table, names, limits)
+        self._robot = declare_robot(self, 'Built-in robot', dynamics=True,
+                                    joint_names='in torque order', joint_limits=True)
         n = self._robot.n
         q0 = declare(self, 'initial_positions', [0.0] * n, 'q(0) [rad | m]', read_only=True)
         qd0 = declare(self, 'initial_velocities', [0.0] * n, "q'(0) [rad/s | m/s]",
