@@ -4,15 +4,17 @@ What a recorded run holds: topics, types, counts, rates, duration and the run's 
 :func:`bag_info` reads a rosbag2 directory (``metadata.yaml`` and its MCAP file, as the
 ``recorder`` node writes it) with ``rosbags`` and returns a :class:`BagInfo`: the
 ``ros2 bag info`` of this route (ros2cli cannot be installed from pip), plus what the recorder
-stored in the metadata's ``custom_data``: the scenario's name, seed and pacing. Times are the
-bag's receive times [s] (simulated time for a ``use_sim_time`` recorder).
+stored in the metadata's ``custom_data``: the run that was recorded (its settings as run, the
+nodes that ran, :mod:`robotica_sim.bags.run_record`). Times are the bag's receive times [s]
+(simulated time for a ``use_sim_time`` recorder).
 """
 
 from dataclasses import dataclass
 from pathlib import Path
 
+from robotica_sim.bags.repair import partial_reason, repair_command
+from robotica_sim.bags.run_record import custom_data, run_record, RunRecord
 from rosbags.highlevel import AnyReader
-import yaml
 
 __all__ = ['BagError', 'BagInfo', 'TopicInfo', 'bag_info', 'format_info', 'open_bag']
 
@@ -49,26 +51,12 @@ class BagInfo:
     message_count: int
     size: int           # [bytes] of the bag's files
     compression: str    # '' when none
-    scenario: dict      # name, description, seed, pacing, duration when recorded; else {}
+    run: RunRecord      # the run's settings and nodes as the bag records them
 
     @property
     def duration(self) -> float:
         """Return the time between the first and the last message [s]."""
         return self.end - self.start
-
-
-def _scenario(bag: Path) -> dict:
-    """Return the scenario the recorder stored in the metadata's custom_data, or {}."""
-    try:
-        metadata = yaml.safe_load((bag / 'metadata.yaml').read_text())
-        custom = metadata['rosbag2_bagfile_information'].get('custom_data') or {}
-        scenario = yaml.safe_load(custom.get('robotica.scenario.yaml', '')) or {}
-    except (OSError, KeyError, TypeError, AttributeError, yaml.YAMLError):
-        return {}
-    if not isinstance(scenario, dict):
-        return {}
-    return {key: scenario[key] for key in ('name', 'description', 'seed', 'pacing', 'duration')
-            if key in scenario}
 
 
 def open_bag(path: str | Path) -> AnyReader:
@@ -86,10 +74,11 @@ def open_bag(path: str | Path) -> AnyReader:
     if not bag.is_dir():
         raise BagError(f'{bag}: not a bag directory (a rosbag2 bag is a directory with '
                        'metadata.yaml)')
+    partial = partial_reason(bag)
+    if partial:
+        raise BagError(f'{bag}: a partial bag ({partial}): `{repair_command(bag)}` recovers '
+                       'what was recorded')
     if not (bag / 'metadata.yaml').is_file():
-        if any(bag.glob('*.mcap')):
-            raise BagError(f'{bag}: the recorder did not close this bag (killed?): '
-                           f'`robotica bag repair {bag}` makes it readable')
         raise BagError(f'{bag}: not a bag directory: no metadata.yaml')
     try:
         reader = AnyReader([bag])
@@ -133,12 +122,11 @@ def bag_info(path: str | Path) -> BagInfo:
     end = max((t.last for t in counted), default=0.0)
     size = sum(f.stat().st_size for f in bag.iterdir() if f.is_file())
     return BagInfo(bag, tuple(topics), start, end, sum(t.count for t in topics), size,
-                   compression, _scenario(bag))
+                   compression, run_record(custom_data(bag)))
 
 
 def format_info(info: BagInfo) -> str:
     """Return ``info`` as the text ``robotica info`` prints (aligned like ``ros2 bag info``)."""
-    scenario = info.scenario
     lines = [f'Bag:          {info.path}',
              f'Size:         {info.size / 1e6:.2f} MB'
              + (f' ({info.compression} compressed)' if info.compression else ''),
@@ -146,11 +134,7 @@ def format_info(info: BagInfo) -> str:
              f'Start:        {info.start:.3f} s',
              f'End:          {info.end:.3f} s',
              f'Messages:     {info.message_count}']
-    if scenario:
-        name, seed = scenario.get('name', '?'), scenario.get('seed', '?')
-        lines.append(f'Scenario:     {name} (seed {seed}, pacing {scenario.get("pacing", "?")})')
-        if 'description' in scenario:
-            lines.append(f'              {scenario["description"]}')
+    lines += [f'{label + ":" if label else "":<14}{text}' for label, text in info.run.lines()]
     width = max((len(t.name) for t in info.topics), default=5)
     type_width = max((len(t.msgtype) for t in info.topics), default=4)
     lines.append(f'Topics:       {len(info.topics)}')

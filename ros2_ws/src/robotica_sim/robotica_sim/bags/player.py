@@ -50,7 +50,9 @@ class Playback:
         """Yield (receive time [ns], topic, serialized message) in time order."""
         connections = [c for c in self._reader.connections if c.topic in self.topics]
         try:
-            for connection, timestamp, raw in self._reader.messages(connections=connections):
+            # An empty connection list would mean "every topic" to rosbags: read nothing then.
+            for connection, timestamp, raw in (self._reader.messages(connections=connections)
+                                               if connections else ()):
                 yield timestamp, self.topics[connection.topic], bytes(raw)
         except Exception as err:   # a truncated chunk surfaces only while reading
             raise BagError(f'reading stopped: {err}') from None

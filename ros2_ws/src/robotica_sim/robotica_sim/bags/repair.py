@@ -1,19 +1,23 @@
 """
 Repair a bag whose recorder died before closing it (``robotica bag repair``).
 
-A killed :class:`robotica_sim.bags.writer.BagWriter` leaves MCAP files without their summary
-(the last one also without its footer, possibly ending inside a record) and no
-``metadata.yaml``. The repair reads each file's records in order with ``mcap``'s stream reader
-(CRCs checked) up to the first one that is incomplete, writes a finished copy of the file
-holding every complete message, keeps the original as ``<file>.broken``, and writes
-``metadata.yaml`` from what was read: topics (type, definition, offered QoS, type hash, counts),
-files, and the run's ``custom_data`` (from the ``robotica`` metadata record of the first file).
-The effect of ``ros2 bag reindex`` plus ``mcap recover``.
+A killed :class:`robotica_sim.bags.writer.BagWriter` leaves MCAP files without their summary (the
+last one also without its footer, possibly ending inside a record) and no ``metadata.yaml``; a file
+cut short later (a full disk, a copy interrupted) lacks its footer although the ``metadata.yaml``
+is there. :func:`partial_reason` tells such a *partial* bag (a finished MCAP file ends with the
+MCAP magic bytes). The repair reads each file's records in order with ``mcap``'s stream reader
+(CRCs checked) up to the first one that is incomplete, writes a finished copy of the file holding
+every complete message, keeps the original as ``<file>.broken``, and writes ``metadata.yaml`` from
+what was read: topics (type, definition, offered QoS, type hash, counts), files, and the run's
+``custom_data`` (the ``robotica`` metadata records of the files, under what a ``metadata.yaml``
+already there held; that file is kept as ``metadata.yaml.broken``). The effect of ``ros2 bag
+reindex`` plus ``mcap recover``.
 """
 from dataclasses import dataclass, field
 import os
 from pathlib import Path
 import re
+import shlex
 import struct
 
 from mcap.exceptions import McapError
@@ -24,8 +28,10 @@ from robotica_sim.bags.metadata import (bag_metadata, FileRecord, METADATA_FILE,
                                         qos_from_yaml, QOS_KEY, TopicRecord, TYPE_HASH_KEY,
                                         write_metadata)
 from robotica_sim.bags.writer import CHUNK_SIZE, CUSTOM_DATA_RECORD, LIBRARY
+import yaml
 
 BROKEN_SUFFIX = '.broken'
+MCAP_MAGIC = b'\x89MCAP0\r\n'   # the first and last bytes of a finished MCAP file
 # What a truncated or torn record raises while it is parsed or decompressed.
 READ_ERRORS = (McapError, EOFError, struct.error, ValueError, KeyError, IndexError,
                UnicodeDecodeError)
@@ -129,33 +135,81 @@ class _Rewriter:
         return target, topic
 
 
-def needs_repair(bag: str | Path) -> bool:
-    """Return whether ``bag`` is a recorder's directory left without ``metadata.yaml``."""
+def _finished(path: Path) -> bool:
+    """Return whether the MCAP file ``path`` ends with the magic bytes (it has its footer)."""
+    try:
+        with open(path, 'rb') as stream:
+            if stream.seek(0, os.SEEK_END) < 2 * len(MCAP_MAGIC):
+                return False
+            stream.seek(-len(MCAP_MAGIC), os.SEEK_END)
+            return stream.read() == MCAP_MAGIC
+    except OSError:
+        return False
+
+
+def partial_reason(bag: str | Path) -> str:
+    """
+    Return why the recorder's directory ``bag`` is a partial bag, or '' when it is not one.
+
+    A partial bag has MCAP files but no ``metadata.yaml`` (its recorder was killed), or a file
+    that ends before its footer (cut short); :func:`repair_bag` makes it readable.
+    """
     bag = Path(bag)
-    return bag.is_dir() and not (bag / METADATA_FILE).exists() and any(bag.glob('*.mcap'))
+    if not bag.is_dir():
+        return ''
+    files = sorted(bag.glob('*.mcap'))
+    if not files:
+        return ''
+    if not (bag / METADATA_FILE).exists():
+        return f'no {METADATA_FILE}: the recorder did not close it (killed?)'
+    cut = [f.name for f in files if not _finished(f)]
+    if cut:
+        return f'{", ".join(cut)} cut short (no MCAP footer)'
+    return ''
+
+
+def needs_repair(bag: str | Path) -> bool:
+    """Return whether ``bag`` is a partial bag (:func:`partial_reason`)."""
+    return bool(partial_reason(bag))
+
+
+def repair_command(bag: str | Path) -> str:
+    """Return the command that repairs ``bag``, quoted for a POSIX shell."""
+    return f'robotica bag repair {shlex.quote(str(bag))}'
+
+
+def _recorded_custom_data(bag: Path) -> dict[str, str]:
+    """Return the custom_data of the bag's ``metadata.yaml``; {} when there is none to read."""
+    try:
+        metadata = yaml.safe_load((bag / METADATA_FILE).read_text())
+        custom = metadata['rosbag2_bagfile_information'].get('custom_data') or {}
+    except (OSError, KeyError, TypeError, AttributeError, UnicodeDecodeError, yaml.YAMLError):
+        return {}
+    return {str(k): str(v) for k, v in custom.items()} if isinstance(custom, dict) else {}
 
 
 def repair_bag(bag: str | Path) -> RepairReport:
     """
-    Make the bag directory ``bag`` readable again; return what was kept.
+    Make the partial bag directory ``bag`` readable again; return what was kept.
 
     Raises
     ------
     RepairError
-        If ``bag`` is not a directory, has no MCAP file, or already has a ``metadata.yaml``
-        (a bag closed properly needs no repair; remove the file to force one).
+        If ``bag`` is not a directory, has no MCAP file, or is not partial (it has a
+        ``metadata.yaml`` and every file its footer: nothing to repair).
 
     """
     bag = Path(bag)
     if not bag.is_dir():
         raise RepairError(f'{bag}: not a directory')
-    if (bag / METADATA_FILE).exists():
-        raise RepairError(f'{bag}: has a {METADATA_FILE}, so it was closed properly; nothing '
-                          'to repair')
+    sources = _storage_files(bag)
+    if not needs_repair(bag):
+        raise RepairError(f'{bag}: has a {METADATA_FILE} and every file is complete, so it was '
+                          'closed properly; nothing to repair')
     rewriter = _Rewriter()
     report = RepairReport(bag)
     records = []
-    for source in _storage_files(bag):
+    for source in sources:
         broken = source.with_name(source.name + BROKEN_SUFFIX)
         os.replace(source, broken)
         record, outcome = rewriter.rewrite(broken, source)
@@ -168,5 +222,8 @@ def repair_bag(bag: str | Path) -> RepairReport:
         raise RepairError(f'{bag}: no complete message in any file (originals kept as '
                           f'*.mcap{BROKEN_SUFFIX})')
     report.topics = list(rewriter.topics.values())
-    write_metadata(bag, bag_metadata('mcap', report.topics, records, rewriter.custom_data))
+    custom_data = {**rewriter.custom_data, **_recorded_custom_data(bag)}
+    if (bag / METADATA_FILE).exists():
+        os.replace(bag / METADATA_FILE, bag / (METADATA_FILE + BROKEN_SUFFIX))
+    write_metadata(bag, bag_metadata('mcap', report.topics, records, custom_data))
     return report

@@ -137,6 +137,17 @@ class BagWriter:
         if time.monotonic() >= self._next_flush:
             self.flush()
 
+    def set_custom_data(self, key: str, value: str) -> None:
+        """
+        Store ``key: value`` in the bag's ``custom_data``; also in the current file at once.
+
+        The file gets a ``robotica`` metadata record holding the pair, so that a repair after a
+        kill finds it (a later record of a key wins).
+        """
+        self.custom_data[key] = value
+        if not self._closed:
+            self._mcap.add_metadata(CUSTOM_DATA_RECORD, {key: value})
+
     def flush(self) -> None:
         """Write the chunk in progress to the file (the OS has it even if the process dies)."""
         if not self._closed:

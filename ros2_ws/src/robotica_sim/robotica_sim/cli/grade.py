@@ -22,6 +22,7 @@ import time
 from typing import Any
 
 from robotica_sim.bags.info import BagError
+from robotica_sim.bags.run_record import RunRecord
 from robotica_sim.grading.metrics import compute_metrics, METRICS
 from robotica_sim.grading.rubric import (Bound, check_metrics, load_rubric, resolve_rubric,
                                          Rubric, RubricError)
@@ -91,7 +92,7 @@ def grade_bag(bag: Path, rubric: Rubric | None) -> dict:
     with the reason.
     """
     start = time.perf_counter()
-    entry: dict[str, Any] = {'bag': str(bag), 'scenario': None, 'status': 'error',
+    entry: dict[str, Any] = {'bag': str(bag), 'scenario': None, 'run': None, 'status': 'error',
                              'error': None, 'metrics': {}, 'units': {}, 'notes': {},
                              'absent': {}, 'joint_names': [], 'checks': [], 'failed': []}
     try:
@@ -103,7 +104,8 @@ def grade_bag(bag: Path, rubric: Rubric | None) -> dict:
     except Exception as err:   # a corrupt bag can fail anywhere in decoding: report it
         entry['error'] = f'{bag}: cannot grade the bag: {type(err).__name__}: {err}'
         return entry
-    entry.update(scenario=run.scenario_name, joint_names=list(metrics.joint_names),
+    entry.update(scenario=run.scenario_name, run=_run_entry(run.run),
+                 joint_names=list(metrics.joint_names),
                  metrics={k: _json_value(v) for k, v in metrics.values.items()},
                  units={k: METRICS[k].unit for k in metrics.values},
                  notes=metrics.notes, absent=metrics.absent, status='ok')
@@ -118,6 +120,29 @@ def grade_bag(bag: Path, rubric: Rubric | None) -> dict:
         entry['status'] = 'fail' if entry['failed'] else 'pass'
     entry['seconds'] = round(time.perf_counter() - start, 3)
     return entry
+
+
+def _run_entry(record: RunRecord) -> dict:
+    """Return what ran as the bag records it: settings (and as text), nodes not ours."""
+    return {'settings': record.settings, 'settings_from': record.settings_from,
+            'overrides': record.overrides, 'text': dict(record.lines()).get('Run', ''),
+            'nodes_not_started_by_robotica': [n.name for n in record.foreign_nodes]}
+
+
+def _run_line(run: dict | None) -> str:
+    """
+    Return the line of what ran, '' when the bag records nothing of it.
+
+    >>> _run_line({'text': 'pacing realtime (as run)', 'nodes_not_started_by_robotica': ['me']})
+    'run: pacing realtime (as run); not started by robotica run: me'
+    """
+    if not run:
+        return ''
+    parts = [run['text']] if run['text'] else []
+    if run['nodes_not_started_by_robotica']:
+        parts.append('not started by robotica run: '
+                     + ', '.join(run['nodes_not_started_by_robotica']))
+    return 'run: ' + '; '.join(parts) if any(parts) else ''
 
 
 def _format_value(value: Any) -> str:
@@ -144,6 +169,7 @@ def format_entry(entry: dict) -> str:
     """Return one bag's metrics (or checks, when graded with a rubric) as a table."""
     lines = [f'bag: {entry["bag"]}' + (f' (scenario {entry["scenario"]})'
                                        if entry['scenario'] else '')]
+    lines += [line for line in [_run_line(entry.get('run'))] if line]
     if entry['checks']:
         rows = []
         for check in entry['checks']:

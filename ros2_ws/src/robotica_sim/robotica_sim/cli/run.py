@@ -17,6 +17,7 @@ import shutil
 import signal
 import sys
 import time
+from typing import Optional
 
 from ament_index_python.packages import get_package_prefix, PackageNotFoundError
 import rclpy
@@ -24,6 +25,7 @@ from rclpy.executors import SingleThreadedExecutor
 from rclpy.qos import QoSProfile, ReliabilityPolicy
 from rclpy.signals import SignalHandlerOptions
 from robotica_sim.bags.info import BagError
+from robotica_sim.bags.repair import partial_reason, repair_command
 from robotica_sim.grading.summary import summarize_bag
 from robotica_sim.runs.plan import NodeSpec, plan_run, recorded_topics
 from robotica_sim.runs.scenario import load_scenario, ScenarioError
@@ -42,6 +44,8 @@ EPILOG = """examples:
 MATCH_SETTLE = 0.5   # [s] wall clock, see _wait_ready
 GRAPH_WAIT = 5.0     # [s] wall clock, see _wait_for_graph
 CALL_RETRY = 2.0     # [s] wall clock, see _call
+SAFE_STOP = 1.0      # [s] simulated after a node died: the simulator's cmd_timeout 0.5 s + 0.5
+SAFE_STOP_WALL = 5.0     # [s] wall clock, the longest wait for that stop
 STOP_ORDER = ['simulator', 'path_tracker', 'joint_controller', 'odometry', 'encoder_emulator',
               'gyro_emulator', 'compass_emulator', 'gps_emulator', 'path_publisher',
               'joint_trajectory_publisher', 'recorder']
@@ -97,21 +101,28 @@ def _argv(spec: NodeSpec, params_file: Path) -> list[str]:
 
 
 def _prepare(args: argparse.Namespace, scenario, run_dir: Path) -> list[NodeSpec]:
-    nodes = plan_run(scenario)
     bag = run_dir / 'bag'
     scenario_copy = run_dir / 'scenario.yaml'
     params_file = run_dir / 'params.yaml'
     run_file = run_dir / 'run.yaml'
     shutil.copy(scenario.source, scenario_copy)
-    run_file.write_text(yaml.safe_dump({
-        'scenario': scenario.name, 'seed': scenario.seed, 'pacing': scenario.pacing,
-        'duration': scenario.duration, 'domain_id': int(os.environ['ROS_DOMAIN_ID']),
-        'scenario_file': str(scenario.source),
-        'started': time.strftime('%Y-%m-%dT%H:%M:%S%z')}, sort_keys=False))
     recorder = NodeSpec('robotica_sim', 'recorder', 'recorder', {
         'output': str(bag), 'topics': list(recorded_topics(scenario)),
         'metadata_files': [str(scenario_copy), str(params_file), str(run_file)]})
-    nodes = [recorder] + nodes
+    nodes = [recorder] + plan_run(scenario)
+    # What ran, as run (the recorder stores it in the bag: robotica_sim.bags.run_record).
+    overrides = {k: v for k, v in (('pacing', args.pacing), ('duration', args.duration))
+                 if v is not None}
+    run_file.write_text(yaml.safe_dump({
+        'scenario': scenario.name, 'seed': scenario.seed, 'pacing': scenario.pacing,
+        'duration': scenario.duration, 'step_period': scenario.step_period,
+        'overrides': overrides, 'domain_id': int(os.environ['ROS_DOMAIN_ID']),
+        'scenario_file': str(scenario.source),
+        'started': time.strftime('%Y-%m-%dT%H:%M:%S%z'),
+        'nodes': [{'name': 'robotica_run', 'started_by': 'robotica', 'command': 'robotica run'}]
+        + [{'name': spec.name, 'started_by': 'robotica',
+            'command': f'{spec.package}/{spec.executable}'} for spec in nodes]},
+        sort_keys=False))
     params = {}
     for spec in nodes:
         params[spec.name] = {'ros__parameters': {'use_sim_time': spec.use_sim_time,
@@ -143,12 +154,36 @@ def _call(executor, client, deadline: float) -> Trigger.Response:
             raise RunFailed(f'service {client.srv_name} did not answer')
 
 
+def _exit_text(code: int) -> str:
+    """
+    Return how a process ended, from its exit code (negative: the signal that killed it).
+
+    >>> _exit_text(-9), _exit_text(1)
+    ('was killed by SIGKILL', 'exited with code 1')
+    """
+    if code < 0:
+        try:
+            return f'was killed by {signal.Signals(-code).name}'
+        except ValueError:
+            return f'was killed by signal {-code}'
+    return f'exited with code {code}'
+
+
+def _died(supervisor: ProcessSupervisor, names: list[str]) -> Optional[tuple[str, int]]:
+    """Return the first of ``names`` that exited before it was asked to, with its code."""
+    supervisor.watch()
+    dead = {n: c for n, c in supervisor.died().items() if n in names}
+    return next(iter(dead.items())) if dead else None
+
+
+def _death(supervisor: ProcessSupervisor, name: str, code: int) -> RunFailed:
+    return RunFailed(f'node {name} {_exit_text(code)} before the end:\n' + supervisor.tail(name))
+
+
 def _check_alive(supervisor: ProcessSupervisor, names: list[str]) -> None:
-    dead = {n: c for n, c in supervisor.exited().items() if n in names}
+    dead = _died(supervisor, names)
     if dead:
-        name, code = next(iter(dead.items()))
-        raise RunFailed(f'node {name} exited with code {code} before the end:\n'
-                        + supervisor.tail(name))
+        raise _death(supervisor, *dead)
 
 
 def _wait_ready(args, executor, node, supervisor, names) -> None:
@@ -237,12 +272,27 @@ def _simulate(args, scenario, run_dir: Path, supervisor: ProcessSupervisor) -> f
                    f'{scenario.pacing} pacing')
         start = time.monotonic()
         timeout = args.timeout or 120.0 + 10.0 * scenario.duration
+        others = [n for n in names if n != 'simulator']
+        fault = None    # the first node that died: (name, code), and when the run ends for it
         while supervisor.returncode('simulator') is None:
             executor.spin_once(timeout_sec=0.1)
             _progress(args, sim_time[0], scenario.duration)
-            _check_alive(supervisor, [n for n in names if n != 'simulator'])
+            if fault is None:
+                fault = _died(supervisor, others)
+                if fault is not None:
+                    if fault[0] == 'recorder':
+                        raise _death(supervisor, *fault)
+                    # Let the simulator go on a little: on a stale command it stops the robot,
+                    # and the bag records that stop.
+                    _log(args, f'node {fault[0]} {_exit_text(fault[1])}; the simulator stops '
+                               'the robot, then the run ends')
+                    safe_stop = (sim_time[0] + SAFE_STOP, time.monotonic() + SAFE_STOP_WALL)
+            elif sim_time[0] >= safe_stop[0] or time.monotonic() >= safe_stop[1]:
+                break
             if time.monotonic() - start > timeout:
                 raise RunFailed(f'the run took longer than {timeout:.0f} s wall clock')
+        if fault is not None:
+            raise _death(supervisor, *fault)
         wall = time.monotonic() - start
         if not args.quiet and sys.stderr.isatty():
             print(file=sys.stderr)
@@ -296,11 +346,21 @@ def main(args: argparse.Namespace) -> int:
     finally:
         codes = supervisor.stop_all(STOP_ORDER)
         rclpy.try_shutdown()
-    if codes.get('recorder') not in (0, None):
+    faults = _faults(supervisor)
+    if codes.get('recorder') not in (0, None) and 'recorder' not in faults:
         print(f'robotica run: the recorder exited with {codes["recorder"]}:\n'
               + supervisor.tail('recorder'), file=sys.stderr)
         code = code or 1
+    for name, text in faults.items():
+        print(f'robotica run: fault: node {name} {text}; its log: '
+              f'{supervisor.log_path(name)}', file=sys.stderr)
+    code = code or (1 if faults else 0)
     bag = run_dir / 'bag'
+    partial = partial_reason(bag)
+    if partial:
+        print(f'robotica run: the bag is partial ({partial}): `{repair_command(bag)}` recovers '
+              f'what was recorded; logs in {run_dir / "logs"}', file=sys.stderr)
+        return code or 1
     if not (bag / 'metadata.yaml').is_file():
         print(f'robotica run: no bag was written; logs in {run_dir / "logs"}', file=sys.stderr)
         return code or 1
@@ -311,8 +371,19 @@ def main(args: argparse.Namespace) -> int:
               file=sys.stderr)
         return code or 1
     if args.json:
-        print(json.dumps({**summary.as_dict(), 'exit_code': code}))
+        print(json.dumps({**summary.as_dict(), 'faults': faults, 'exit_code': code}))
     else:
         print(f'bag: {bag}')
-        print(f'{scenario.name}: {summary.line()}')
+        print(f'{scenario.name}: {summary.line()}'
+              + ''.join(f'; node {name} {text}' for name, text in faults.items()))
     return code
+
+
+def _faults(supervisor: ProcessSupervisor) -> dict[str, str]:
+    """Return the nodes that died or stalled during the run, each with what happened."""
+    faults = {name: _exit_text(code) for name, code in supervisor.died().items()
+              if not (name == 'simulator' and code == 0)}    # its normal end
+    for name, seen in supervisor.stalled.items():
+        faults.setdefault(name, f'stalled (found stopped, {seen} check'
+                          f'{"s" if seen > 1 else ""} 0.1 s apart)')
+    return faults

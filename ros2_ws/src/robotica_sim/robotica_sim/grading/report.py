@@ -144,13 +144,17 @@ def write_report(run: RunSeries, directory: str | Path, robot_every: Optional[fl
 
 
 def render_html(run: RunSeries, files: list[FigureFile]) -> str:
-    """Return the report page: scenario, status, topics and the figures with their captions."""
+    """
+    Return the report page: what ran, status, topics and the figures with their captions.
+
+    What ran is the bag's record (:meth:`robotica_sim.bags.run_record.RunRecord.lines`): the
+    settings as run (the scenario file's only for a bag that records none, said so) and the
+    nodes, a user's marked as not started by ``robotica run``.
+    """
     scenario = run.scenario or {}
-    name = str(scenario.get('name', run.bag.name))
+    name = str(run.scenario_name or run.bag.name)
     rows = [('bag', str(run.bag)), ('duration', f'{run.duration:.3f} s (simulated)')]
-    for key in ('name', 'description', 'seed', 'pacing'):
-        if key in scenario:
-            rows.append((key, str(scenario[key])))
+    rows += [(label.lower(), text) for label, text in run.run.lines()]
     robot = scenario.get('robot')
     if isinstance(robot, dict) and 'type' in robot:
         rows.append(('robot', str(robot['type'])))

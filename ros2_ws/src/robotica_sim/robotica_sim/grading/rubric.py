@@ -4,7 +4,8 @@ Grading rubrics: thresholds on the metrics of a run (``robotica grade --rubric``
 A rubric is a YAML mapping (docs/grading.md)::
 
     rubric: ej9_1 pure pursuit        # title
-    scenario: ej9_1                   # optional: the bag's scenario name must match
+    scenario: ej9_1                   # optional: the scenario (or a list of them) the bag
+                                      # must have run; another one fails the check 'scenario'
     parameters:                       # optional: MetricParams overrides
       goal_tolerance: 0.2             # [m]
     checks:
@@ -74,7 +75,7 @@ class Rubric:
 
     title: str
     checks: dict[str, Bound]
-    scenario: str | None = None
+    scenario: tuple[str, ...] | None = None     # the scenarios the rubric is for; None: any
     params: MetricParams = field(default_factory=MetricParams)
     source: str = '<rubric>'
 
@@ -132,9 +133,9 @@ def parse_rubric(data: Any, source: str = '<rubric>') -> Rubric:
     Raises
     ------
     RubricError
-        For anything but a mapping with a non-empty ``checks`` mapping of known metrics to
-        ``{min, max}`` bounds (finite numbers, min <= max), an optional string ``rubric``
-        (title) and ``scenario``, and optional ``parameters`` of
+        For anything but a mapping with a non-empty ``checks`` mapping of known metrics to ``{min,
+        max}`` bounds (finite numbers, min <= max), an optional string ``rubric`` (title), an
+        optional ``scenario`` (a name or a list of names), and optional ``parameters`` of
         :class:`~robotica_sim.grading.metrics.MetricParams`; the message names ``source``.
 
     Examples
@@ -149,9 +150,16 @@ def parse_rubric(data: Any, source: str = '<rubric>') -> Rubric:
     if unknown:
         raise RubricError(f'{source}: unknown key(s) {", ".join(unknown)}; a rubric has '
                           f'{", ".join(_TOP_KEYS)}')
-    for key in ('rubric', 'scenario'):
-        if key in data and not isinstance(data[key], str):
-            raise RubricError(f'{source}: {key} must be a string, got {data[key]!r}')
+    if 'rubric' in data and not isinstance(data['rubric'], str):
+        raise RubricError(f'{source}: rubric must be a string, got {data["rubric"]!r}')
+    scenario = data.get('scenario')
+    if scenario is not None:
+        names = [scenario] if isinstance(scenario, str) else scenario
+        if not isinstance(names, list) or not names or not all(
+                isinstance(n, str) and n for n in names):
+            raise RubricError(f'{source}: scenario must be a scenario name or a list of them, '
+                              f'got {scenario!r}')
+        scenario = tuple(names)
     checks = data.get('checks')
     if not isinstance(checks, dict) or not checks:
         raise RubricError(f'{source}: checks must be a non-empty mapping of metric names to '
@@ -165,7 +173,7 @@ def parse_rubric(data: Any, source: str = '<rubric>') -> Rubric:
     params = (_params(data['parameters'], f'{source}: parameters') if 'parameters' in data
               else MetricParams())
     return Rubric(title=data.get('rubric', Path(source).stem), checks=bounds,
-                  scenario=data.get('scenario'), params=params, source=source)
+                  scenario=scenario, params=params, source=source)
 
 
 def resolve_rubric(name_or_path: str) -> Path:
@@ -221,16 +229,18 @@ def check_metrics(rubric: Rubric, metrics: RunMetrics,
     """
     Check a run's metrics against ``rubric``; one result per check, in the rubric's order.
 
-    When the rubric names a scenario, a first result ``scenario`` checks that the run's
-    ``scenario_name`` matches it. A metric the run lacks (absent) or cannot define (None)
-    fails, with the reason in ``message``.
+    When the rubric names its scenarios, a first result ``scenario`` checks that the run's
+    ``scenario_name`` is one of them (a bag that records no scenario fails it). A metric the run
+    lacks (absent) or cannot define (None) fails, with the reason in ``message``.
     """
     results = []
     if rubric.scenario is not None:
-        matches = scenario_name == rubric.scenario
-        results.append(CheckResult(
-            'scenario', scenario_name or 'none', None, matches,
-            '' if matches else f'the rubric is for scenario {rubric.scenario!r}, the bag ran '
-            f'{scenario_name!r}'))
+        matches = scenario_name in rubric.scenario
+        wanted = (f'scenario {rubric.scenario[0]!r}' if len(rubric.scenario) == 1
+                  else f'scenarios {", ".join(rubric.scenario)}')
+        ran = (f'the bag ran {scenario_name!r}' if scenario_name is not None
+               else 'the bag records no scenario (recorded outside robotica run?)')
+        results.append(CheckResult('scenario', scenario_name or 'none', None, matches,
+                                   '' if matches else f'the rubric is for {wanted}, {ran}'))
     results.extend(_check(name, bound, metrics) for name, bound in rubric.checks.items())
     return results

@@ -1,10 +1,11 @@
 """
 The time series of a recorded run: one loader for every command that reads a run's bag.
 
-:func:`load_run` reads a rosbag2 directory (as ``robotica run`` and the ``recorder`` node write
-it) with :func:`robotica_sim.bags.info.open_bag` and returns a :class:`RunSeries`: each known
-topic as a :class:`Series` of float64 NumPy arrays, the reference path, the run's scenario
-(from the metadata's ``custom_data``) and the simulator's last status. ``robotica grade`` and
+:func:`load_run` reads a rosbag2 directory (as ``robotica run`` and the ``recorder`` node write it)
+with :func:`robotica_sim.bags.info.open_bag` and returns a :class:`RunSeries`: each known topic as
+a :class:`Series` of float64 NumPy arrays, the reference path, the run as the bag records it (its
+settings as run, its nodes and its scenario, from the metadata's ``custom_data``:
+:mod:`robotica_sim.bags.run_record`) and the simulator's last status. ``robotica grade`` and
 ``robotica report`` compute from it, so that no other module decodes bags.
 
 Times are seconds of simulated time: a message's header stamp (a topic whose stamps are all
@@ -28,12 +29,10 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from robotica_kin.geodetic import GeodeticOrigin
 from robotica_sim.bags.info import BagError, open_bag
-import yaml
+from robotica_sim.bags.run_record import custom_data, run_record, RunRecord
 
 __all__ = ['MSGTYPES', 'RunSeries', 'Series', 'TOPICS', 'fixes_to_enu', 'gps_origin',
            'load_run']
-
-_YAML_LOADER = getattr(yaml, 'CSafeLoader', yaml.SafeLoader)   # LibYAML when available
 
 TOPICS = {
     'clock': '/clock',
@@ -144,6 +143,7 @@ class RunSeries:
     status: dict | None                 # last /simulator/status
     msgtypes: dict[str, str] = field(default_factory=dict)  # type of every topic of the bag
     ignored: dict[str, str] = field(default_factory=dict)   # known topic of another type: why
+    run: RunRecord = field(default_factory=RunRecord)       # the run's settings and nodes
 
     @property
     def is_manipulator(self) -> bool:
@@ -152,8 +152,8 @@ class RunSeries:
 
     @property
     def scenario_name(self) -> str | None:
-        """Return the scenario's ``name`` (None when the bag has no scenario)."""
-        name = (self.scenario or {}).get('name')
+        """Return the name of the scenario that ran (None when the bag records none)."""
+        name = self.run.name if self.run.name is not None else (self.scenario or {}).get('name')
         return None if name is None else str(name)
 
 
@@ -298,17 +298,6 @@ def _path(msg: Any) -> tuple[NDArray[np.float64], NDArray[np.float64] | None]:
     return points, stamps if timed else None
 
 
-def _scenario(bag: Path) -> dict | None:
-    """Return the scenario the recorder stored in the metadata's custom_data, or None."""
-    try:
-        metadata = yaml.load((bag / 'metadata.yaml').read_text(), Loader=_YAML_LOADER)
-        custom = metadata['rosbag2_bagfile_information'].get('custom_data') or {}
-        scenario = yaml.load(custom.get('robotica.scenario.yaml') or '', Loader=_YAML_LOADER)
-    except (OSError, KeyError, TypeError, AttributeError, yaml.YAMLError):
-        return None
-    return scenario if isinstance(scenario, dict) else None
-
-
 def load_run(bag: str | Path, topics: Iterable[str] | None = None) -> RunSeries:
     """
     Read a run's bag; only the listed topics if given (``/clock`` is always read).
@@ -374,7 +363,7 @@ def load_run(bag: str | Path, topics: Iterable[str] | None = None) -> RunSeries:
         raise BagError(f'{path}: cannot read the bag: {err}') from None
     finally:
         reader.close()
-    scenario = _scenario(path)
+    record = run_record(custom_data(path))
     series = {role: _scalar_series(r, receive_times[role], _SCALAR[role][0]) if r else None
               for role, r in rows.items()}
     joints = {role: _joint_series(role, m) if m else None for role, m in joint_msgs.items()}
@@ -393,8 +382,8 @@ def load_run(bag: str | Path, topics: Iterable[str] | None = None) -> RunSeries:
                   'stale_command_stops': int(s.stale_command_stops),
                   'finished': bool(s.finished)}
     return RunSeries(
-        bag=path, scenario=scenario, duration=duration, counts=counts, path=path_points,
-        path_times=path_times, truth=series['truth'], odom=series['odom'],
+        bag=path, scenario=record.scenario or None, run=record, duration=duration, counts=counts,
+        path=path_points, path_times=path_times, truth=series['truth'], odom=series['odom'],
         cmd=series['cmd_vel'] if series['cmd_vel'] is not None else series['vehicle_command'],
         tracking_error=series['tracking_error'], imu=series['imu'], compass=series['compass'],
         gps=series['gps'], joint_states=joints['joint_states'], controller=joints['controller'],

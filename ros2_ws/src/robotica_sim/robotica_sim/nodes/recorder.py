@@ -8,7 +8,8 @@ files), readable by ``rosbags``, ``mcap`` and rosbag2. Each topic's QoS follows 
 publishers offer, as rosbag2 does (best effort and transient-local only when every publisher
 offers them); the offered profiles and the type hash are stored with the topic. Files named in
 ``metadata_files`` (the run's scenario and parameters) are copied into the bag directory and,
-with the versions of the software (``robotica.versions``), stored in its ``custom_data``.
+with the versions of the software (``robotica.versions``), stored in its ``custom_data``, as
+are the nodes that published each recorded topic (``robotica.publishers``: who ran).
 Messages that DDS reports lost before they reached the recorder are logged and counted in
 ``robotica.messages_lost``.
 
@@ -34,6 +35,7 @@ from rclpy.signals import SignalHandlerOptions
 from robotica_kin.ros.entry_point import run_node
 from robotica_kin.ros.parameters import declare
 from robotica_sim.bags.metadata import qos_to_dict
+from robotica_sim.bags.run_record import PUBLISHERS_KEY
 from robotica_sim.bags.typestore import ensure_type, jazzy_typestore, message_class
 from robotica_sim.bags.writer import BagWriter, COMPRESSION
 from robotica_sim.runs.software_versions import software_versions
@@ -43,6 +45,7 @@ import yaml
 SUBSCRIPTION_DEPTH = 1000   # messages a topic may fall behind before DDS drops the oldest
 QUIET_PERIOD = 0.3   # [s] wall clock without messages that ends the drain at shutdown
 DRAIN_LIMIT = 5.0    # [s] wall clock, the longest drain
+UNKNOWN_NODE = '_NODE_NAME_UNKNOWN_'   # rmw's name of a publisher whose node is not known yet
 
 
 class RecorderNode(Node):
@@ -94,6 +97,8 @@ class RecorderNode(Node):
         for f in files:
             shutil.copy(f, Path(output) / Path(f).name)
         self._lost: dict[str, int] = {}
+        self._publishers: dict[str, set[str]] = {}   # topic -> publishing nodes seen
+        self._unresolved: set[str] = set()   # topics with a publisher whose node is unknown yet
         # Wall-clock timer: the chunk in progress reaches the disk even when no message comes.
         wall = Clock(clock_type=ClockType.STEADY_TIME)
         self.create_timer(flush_period, self._writer.flush, clock=wall)
@@ -108,6 +113,8 @@ class RecorderNode(Node):
                                f'{", ".join(self._topics) if self._topics else "all topics"}')
 
     def _discover(self) -> None:
+        for topic in list(self._unresolved):
+            self._note_publishers(topic, self.get_publishers_info_by_topic(topic))
         for topic, types in self.get_topic_names_and_types():
             if topic in self._recorded or (self._topics and topic not in self._topics):
                 continue
@@ -131,6 +138,7 @@ class RecorderNode(Node):
             rihs01 = self._typestore.hash_rihs01(msgtype)
         index = self._writer.add_topic(topic, msgtype, msgdef, rihs01,
                                        [qos_to_dict(p.qos_profile) for p in publishers])
+        self._note_publishers(topic, publishers)
         best_effort = all(p.qos_profile.reliability == ReliabilityPolicy.BEST_EFFORT
                           for p in publishers)
         latched = all(p.qos_profile.durability == DurabilityPolicy.TRANSIENT_LOCAL
@@ -159,6 +167,20 @@ class RecorderNode(Node):
             event_callbacks=SubscriptionEventCallbacks(message_lost=lost))
         self.get_logger().info(f'recording {topic} [{msgtype}]')
 
+    def _note_publishers(self, topic: str, publishers: list) -> None:
+        """Store the nodes publishing ``topic`` in the bag (when new ones are seen)."""
+        seen = self._publishers.setdefault(topic, set())
+        if any(p.node_name == UNKNOWN_NODE for p in publishers):
+            self._unresolved.add(topic)
+        else:
+            self._unresolved.discard(topic)
+        names = {f'{p.node_namespace.rstrip("/")}/{p.node_name}' for p in publishers
+                 if p.node_name != UNKNOWN_NODE}    # a participant not yet fully discovered
+        if not names <= seen:
+            seen |= names
+            self._writer.set_custom_data(PUBLISHERS_KEY, yaml.safe_dump(
+                {t: sorted(n) for t, n in sorted(self._publishers.items())}))
+
     def _receive_time(self) -> int:
         """Return the receive time [ns]: simulated with use_sim_time, else the system clock."""
         if self.get_clock().ros_time_is_active:
@@ -182,8 +204,10 @@ class RecorderNode(Node):
         while (time.monotonic() - self._last_message < QUIET_PERIOD
                and time.monotonic() < deadline):
             executor.spin_once(timeout_sec=0.05)
+        for topic in self._recorded:
+            self._note_publishers(topic, self.get_publishers_info_by_topic(topic))
         if self._lost:
-            self._writer.custom_data['robotica.messages_lost'] = yaml.safe_dump(self._lost)
+            self._writer.set_custom_data('robotica.messages_lost', yaml.safe_dump(self._lost))
         information = self._writer.close()
         self.get_logger().info(f'closed {self._output}: {self._count} messages in '
                                f'{len(information["files"])} file(s)'

@@ -5,6 +5,12 @@ Each node runs in its own session (Ctrl-C in the terminal reaches only the super
 command, which then stops the nodes in order) and asks the kernel for SIGTERM if the supervisor
 dies (``PR_SET_PDEATHSIG``), so that no node outlives a killed run. Output goes to one log file
 per node.
+
+Faults are told apart: :meth:`ProcessSupervisor.died` names the processes that ended on their own
+(a crash, a kill), :meth:`ProcessSupervisor.watch` notes those found stopped (SIGSTOP, a
+debugger: state ``T`` or ``t`` in ``/proc/<pid>/stat``) and :attr:`ProcessSupervisor.stalled`
+keeps them, so that a run can name the node that died or stalled. A stopped process is
+continued before it is asked to stop.
 """
 import ctypes
 import os
@@ -28,6 +34,8 @@ class ProcessSupervisor:
         self._log_dir.mkdir(parents=True, exist_ok=True)
         self._env = env
         self._procs: dict[str, subprocess.Popen] = {}
+        self.stalled: dict[str, int] = {}   # name -> times it was found stopped
+        self._stopping: set[str] = set()
 
     def start(self, name: str, argv: list[str]) -> None:
         """Start process ``name`` running ``argv``."""
@@ -51,9 +59,29 @@ class ProcessSupervisor:
         """Return the processes that have exited, with their exit codes."""
         return {n: p.returncode for n, p in self._procs.items() if p.poll() is not None}
 
+    def died(self) -> dict[str, int]:
+        """Return the processes that exited before they were asked to stop, with their codes."""
+        return {n: c for n, c in self.exited().items() if n not in self._stopping}
+
+    def watch(self) -> list[str]:
+        """Note and return the processes found stopped now (state T or t: SIGSTOP, traced)."""
+        stopped = []
+        for name, proc in self._procs.items():
+            try:
+                stat = Path(f'/proc/{proc.pid}/stat').read_text()
+            except OSError:    # it has exited (and been reaped)
+                continue
+            if stat[stat.rindex(')') + 2:][:1] in ('T', 't'):
+                stopped.append(name)
+                self.stalled[name] = self.stalled.get(name, 0) + 1
+        return stopped
+
     def stop(self, name: str, timeout: float = 10.0) -> int:
         """Stop ``name``: SIGINT, then SIGTERM, then SIGKILL, ``timeout`` [s] apart at most."""
         proc = self._procs[name]
+        if proc.poll() is None:
+            self._stopping.add(name)
+            proc.send_signal(signal.SIGCONT)   # a stopped process would not see SIGINT
         for sig in (signal.SIGINT, signal.SIGTERM, signal.SIGKILL):
             if proc.poll() is not None:
                 break

@@ -64,6 +64,49 @@ def test_the_repaired_bag_holds_every_flushed_message(tmp_path, cut):
     assert not needs_repair(bag)
 
 
+@pytest.mark.parametrize('keep', [None, 0.5])
+def test_a_cut_file_is_repaired_although_metadata_yaml_exists(tmp_path, keep):
+    # A closed bag whose file was cut afterwards (a copy interrupted, a full disk): its last
+    # byte only (footer), or half of it (chunks lost).
+    store = jazzy_typestore()
+    msgdef, _ = store.generate_msgdef(FLOAT64, ros_version=2)
+    bag = tmp_path / 'bag'
+    writer = BagWriter(bag, flush_period=1e-4, custom_data={'robotica.seed': '7'})  # chunks
+    topic = writer.add_topic('/a', FLOAT64, msgdef, store.hash_rihs01(FLOAT64), QOS)
+    for i in range(3000):
+        writer.write(topic, i * 1_000_000, bytes(store.serialize_cdr(
+            store.types[FLOAT64](data=float(i)), FLOAT64)))
+    writer.close()
+    data = bag / 'bag_0.mcap'
+    size = data.stat().st_size
+    os.truncate(data, size - 1 if keep is None else int(size * keep))
+    assert (bag / 'metadata.yaml').is_file() and needs_repair(bag)
+    with pytest.raises(BagError, match='partial bag .*cut short.*robotica bag repair'):
+        bag_info(bag)
+    report = repair_bag(bag)
+    kept = values(bag)
+    assert kept == [float(i) for i in range(len(kept))] and len(kept) == report.messages
+    assert len(kept) == 3000 if keep is None else 0 < len(kept) < 3000
+    assert (bag / 'metadata.yaml.broken').is_file() and not needs_repair(bag)
+    assert 'robotica.seed' in (bag / 'metadata.yaml').read_text()
+    assert bag_info(bag).message_count == len(kept)
+
+
+def test_custom_data_set_while_recording_survives_a_kill(tmp_path):
+    store = jazzy_typestore()
+    msgdef, _ = store.generate_msgdef(FLOAT64, ros_version=2)
+    writer = BagWriter(tmp_path / 'bag', flush_period=3600.0, custom_data={'robotica.a': '1'})
+    topic = writer.add_topic('/a', FLOAT64, msgdef, store.hash_rihs01(FLOAT64), QOS)
+    writer.set_custom_data('robotica.publishers', '/a: [/mine]\n')
+    writer.set_custom_data('robotica.a', '2')
+    writer.write(topic, 0, bytes(store.serialize_cdr(store.types[FLOAT64](data=1.0), FLOAT64)))
+    writer.flush()
+    writer._stream.flush()
+    repair_bag(tmp_path / 'bag')
+    text = (tmp_path / 'bag' / 'metadata.yaml').read_text()
+    assert "robotica.publishers: '/a: [/mine]" in text and "robotica.a: '2'" in text
+
+
 def test_a_split_bag_is_repaired_file_by_file(tmp_path):
     bag = killed_bag(tmp_path / 'bag', flushed=2000, unflushed=10, max_bag_duration=0.5)
     report = repair_bag(bag)

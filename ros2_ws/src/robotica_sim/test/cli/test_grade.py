@@ -23,13 +23,15 @@ checks:
 """
 
 
-def write_run(path, offset, scenario='straight'):
+def write_run(path, offset, scenario='straight', run=None):
     """Write a run on the x axis at ``offset`` [m] to the left of a straight path."""
     store = jazzy_typestore()
     types = store.types
     writer = Writer(path, version=9, storage_plugin=StoragePlugin.MCAP)
     writer.open()
-    writer.set_custom_data('robotica.scenario.yaml', f'name: {scenario}\n')
+    writer.set_custom_data('robotica.scenario.yaml', f'name: {scenario}\npacing: lockstep\n')
+    if run is not None:
+        writer.set_custom_data('robotica.run.yaml', run)
 
     def stamp(t):
         return types['builtin_interfaces/msg/Time'](sec=int(t), nanosec=round(t % 1 * 1e9))
@@ -65,6 +67,30 @@ def write_run(path, offset, scenario='straight'):
             types['rosgraph_msgs/msg/Clock'](clock=stamp(t)), 'rosgraph_msgs/msg/Clock'))
     writer.close()
     return path
+
+
+def test_a_bag_of_another_scenario_fails_a_pinned_rubric(tmp_path, capsys):
+    rubric = tmp_path / 'pinned.yaml'
+    rubric.write_text('scenario: straight\nchecks:\n  completion: {min: 0.1}\n')
+    good = write_run(tmp_path / 'good', 0.05, scenario='circle')
+    assert run_grade(good, '--rubric', rubric) == 1
+    out = capsys.readouterr().out
+    assert "scenario: the rubric is for scenario 'straight', the bag ran 'circle'" in out
+    assert 'FAIL: 1/2 checks passed' in out
+    # An old bag (no run settings): the scenario file's, said so.
+    assert 'run: pacing lockstep (from the scenario file' in out
+
+
+def test_what_ran_is_shown_not_the_scenario_file(tmp_path, capsys):
+    ran = write_run(tmp_path / 'ran', 0.05, run='scenario: straight\npacing: realtime\n'
+                    'duration: 3.0\noverrides: {pacing: realtime, duration: 3.0}\n')
+    assert run_grade(ran, '--json', '-') == 0
+    (entry,) = json.loads(capsys.readouterr().out)['bags']
+    assert entry['run']['settings'] == {'pacing': 'realtime', 'duration': 3.0}
+    assert entry['run']['settings_from'] == 'run'
+    assert run_grade(ran) == 0
+    assert 'run: pacing realtime, duration 3 s (as run, overridden: pacing realtime, ' \
+        'duration 3.0)' in capsys.readouterr().out
 
 
 def run_grade(*argv):
@@ -146,7 +172,8 @@ def test_not_a_bag_is_one_line_and_exit_1(tmp_path, capsys):
     data.write_bytes(data.read_bytes()[:300])
     assert run_grade(broken) == 1
     captured = capsys.readouterr()
-    assert 'cannot read the bag' in captured.err and captured.err.count('\n') == 1
+    assert 'partial bag' in captured.err and 'robotica bag repair' in captured.err
+    assert captured.err.count('\n') == 1
     assert 'Traceback' not in captured.err + captured.out
 
 

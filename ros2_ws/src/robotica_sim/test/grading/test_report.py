@@ -306,6 +306,8 @@ def test_html_references_every_png_and_the_scenario(mobile):
     written = {p.name for p in report.index.parent.glob('*.png')}
     assert set(re.findall(r'<img src="([^"]+)"', page)) == written
     assert 'arc_test' in page and 'Synthetic arc with every sensor.' in page
+    # A bag without run settings: the scenario file's, said to be so.
+    assert '<td>seed 3, pacing lockstep (from the scenario file' in page
     assert '<td>/gps/fix</td><td>sensor_msgs/msg/NavSatFix</td><td class="n">51</td>' in page
     assert 'real time factor 12.5' in page
     for figure in report.figures:

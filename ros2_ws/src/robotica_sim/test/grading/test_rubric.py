@@ -15,7 +15,7 @@ def test_a_rubric_is_parsed_with_its_bounds_and_parameters():
                            'parameters': {'goal_tolerance': 0.3},
                            'checks': {'rms_cross_track': {'max': 0.2},
                                       'completion': {'min': 0.95, 'max': 1}}})
-    assert rubric.title == 'ej9_1 pure pursuit' and rubric.scenario == 'ej9_1'
+    assert rubric.title == 'ej9_1 pure pursuit' and rubric.scenario == ('ej9_1',)
     assert rubric.checks == {'rms_cross_track': Bound(None, 0.2),
                              'completion': Bound(0.95, 1.0)}
     assert rubric.params.goal_tolerance == 0.3 and rubric.params.search_window == 2.0
@@ -32,7 +32,8 @@ def test_a_rubric_is_parsed_with_its_bounds_and_parameters():
     ({'checks': {'completion': {'minimum': 0.9}}}, 'unknown key.*minimum; use min and/or max'),
     ({'checks': {'completion': 0.9}}, 'must be a mapping with min and/or max'),
     ({'checks': {'completion': {'min': 0.9}}, 'title': 'x'}, 'unknown key.*title'),
-    ({'checks': {'completion': {'min': 0.9}}, 'scenario': 7}, 'scenario must be a string'),
+    ({'checks': {'completion': {'min': 0.9}}, 'scenario': 7},
+     'scenario must be a scenario name or a list'),
     ({'checks': {'completion': {'min': 0.9}}, 'parameters': {'tolerance': 1.0}},
      'unknown parameter.*tolerance; known: goal_tolerance'),
     ({'checks': {'completion': {'min': 0.9}}, 'parameters': {'settling_band': 2.0}},
@@ -132,3 +133,21 @@ def test_the_scenario_must_match_when_named():
     assert not first.passed and "for scenario 'ej9_2', the bag ran 'ej9_1'" in first.message
     first, _ = check({'rms_cross_track': {'max': 1}}, scenario='ej9_2', run_scenario=None)
     assert not first.passed and first.value == 'none'
+    assert 'the bag records no scenario' in first.message
+    first, _ = check({'rms_cross_track': {'max': 1}}, scenario=['ej9_2', 'ej9_1'])
+    assert first.passed
+    first, _ = check({'rms_cross_track': {'max': 1}}, scenario=['ej9_2', 'ej9_3a'])
+    assert not first.passed and 'for scenarios ej9_2, ej9_3a' in first.message
+
+
+@pytest.mark.parametrize('scenario', [3, [], [''], ['a', 2], {'name': 'a'}])
+def test_a_scenario_that_is_not_a_name_or_a_list_of_names_is_refused(scenario):
+    with pytest.raises(RubricError, match='scenario must be a scenario name or a list'):
+        parse_rubric({'scenario': scenario, 'checks': {'completion': {'min': 0.5}}})
+
+
+def test_every_shipped_rubric_is_pinned_to_shipped_scenarios():
+    scenarios = {p.stem for p in (SHIPPED[0].parents[1] / 'scenarios').glob('*.yaml')}
+    for path in SHIPPED:
+        rubric = load_rubric(path)
+        assert rubric.scenario and set(rubric.scenario) <= scenarios, path.name
