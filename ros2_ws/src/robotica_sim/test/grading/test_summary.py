@@ -116,3 +116,21 @@ def test_summary_and_grade_agree(figure_eight_bag):
 def test_a_folder_that_is_not_a_bag_is_a_bag_error(tmp_path):
     with pytest.raises(BagError):
         summarize_bag(tmp_path)
+
+
+def test_a_run_that_recorded_only_rosout_is_summarised(tmp_path):
+    # A node refused its configuration: the bag holds only its /rosout lines. rosbags reads
+    # every topic when given no connection: the summary must not decode those as /clock.
+    store = jazzy_typestore()
+    types = store.types
+    path = tmp_path / 'bag'
+    writer = Writer(path, version=9, storage_plugin=StoragePlugin.MCAP)
+    writer.open()
+    rosout = writer.add_connection('/rosout', 'rcl_interfaces/msg/Log', typestore=store)
+    writer.write(rosout, 0, store.serialize_cdr(types['rcl_interfaces/msg/Log'](
+        stamp=stamp(types, 0.0), level=40, name='odometry', msg='invalid configuration',
+        file='', function='', line=0), 'rcl_interfaces/msg/Log'))
+    writer.close()
+    summary = summarize_bag(path)
+    assert (summary.duration, summary.steps, summary.message_count) == (0.0, 0, 1)
+    assert summary.rms_cross_track is None and summary.rms_joint_error is None
