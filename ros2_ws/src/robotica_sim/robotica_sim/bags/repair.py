@@ -58,6 +58,7 @@ class RepairReport:
     bag: Path
     files: list[FileRepair] = field(default_factory=list)
     topics: list[TopicRecord] = field(default_factory=list)
+    old_metadata: bool = False     # a metadata.yaml was there (kept as metadata.yaml.broken)
 
     @property
     def messages(self) -> int:
@@ -223,7 +224,8 @@ def repair_bag(bag: str | Path) -> RepairReport:
                           f'*.mcap{BROKEN_SUFFIX})')
     report.topics = list(rewriter.topics.values())
     custom_data = {**rewriter.custom_data, **_recorded_custom_data(bag)}
-    if (bag / METADATA_FILE).exists():
+    report.old_metadata = (bag / METADATA_FILE).exists()
+    if report.old_metadata:
         os.replace(bag / METADATA_FILE, bag / (METADATA_FILE + BROKEN_SUFFIX))
     write_metadata(bag, bag_metadata('mcap', report.topics, records, custom_data))
     return report

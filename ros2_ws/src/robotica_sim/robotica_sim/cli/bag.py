@@ -1,9 +1,10 @@
 """
 Maintain recorded bags: ``robotica bag repair BAG``.
 
-``repair`` makes a bag readable again after its recorder was killed (SIGKILL, power cut, a
-crash) before it closed the bag: every complete message is kept, the files are finished, and
-``metadata.yaml`` is rebuilt from them (the originals are kept as ``*.mcap.broken``). See
+``repair`` makes a partial bag readable again: its recorder was killed (SIGKILL, power cut, a
+crash) before it closed the bag, or a file was cut short later (with its ``metadata.yaml``
+there). Every complete message is kept, the files are finished, and ``metadata.yaml`` is rebuilt
+from them (the originals are kept as ``*.mcap.broken`` and ``metadata.yaml.broken``). See
 :mod:`robotica_sim.bags.repair`.
 """
 import argparse
@@ -38,5 +39,6 @@ def main(args: argparse.Namespace) -> int:
         state = 'complete' if f.complete else f'cut short ({f.stopped_at})'
         print(f'{f.name}: {f.messages} messages kept, {state}')
     print(f'{report.bag}: {report.messages} messages of {len(report.topics)} topics; '
-          'metadata.yaml rebuilt')
+          'metadata.yaml rebuilt' + (' (the old one kept as metadata.yaml.broken)'
+                                     if report.old_metadata else ''))
     return 0

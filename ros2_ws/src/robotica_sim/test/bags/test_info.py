@@ -48,7 +48,15 @@ def test_command_prints_json_and_fails_cleanly(tmp_path, bag):
     assert done.returncode == 0, done.stderr
     summary = json.loads(done.stdout)
     assert summary['duration'] == pytest.approx(4.0) and len(summary['topics']) == 2
+    assert summary['run']['name'] == 'ej9_3a'
+    assert summary['run']['settings_from'] == 'scenario file'
     failed = subprocess.run([*command, str(tmp_path)], capture_output=True, text=True,
                             timeout=60)
     assert failed.returncode == 1
     assert 'no metadata.yaml' in failed.stderr and 'Traceback' not in failed.stderr
+    # A partial bag: named as such, with the command that repairs it, exit 1.
+    (bag / 'metadata.yaml').unlink()
+    partial = subprocess.run([*command, str(bag)], capture_output=True, text=True, timeout=60)
+    assert partial.returncode == 1 and partial.stderr.count('\n') == 1
+    assert 'partial bag (no metadata.yaml' in partial.stderr
+    assert f'`robotica bag repair {bag}`' in partial.stderr

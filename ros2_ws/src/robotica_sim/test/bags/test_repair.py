@@ -88,6 +88,7 @@ def test_a_cut_file_is_repaired_although_metadata_yaml_exists(tmp_path, keep):
     assert kept == [float(i) for i in range(len(kept))] and len(kept) == report.messages
     assert len(kept) == 3000 if keep is None else 0 < len(kept) < 3000
     assert (bag / 'metadata.yaml.broken').is_file() and not needs_repair(bag)
+    assert report.old_metadata
     assert 'robotica.seed' in (bag / 'metadata.yaml').read_text()
     assert bag_info(bag).message_count == len(kept)
 
