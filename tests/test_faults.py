@@ -146,6 +146,18 @@ def test_a_killed_node_ends_the_run_named_with_the_robot_stopped(tmp_path, clock
     assert summary['exit_code'] == 1
     messages = read(bag)
     assert last_clock(messages) >= t_fault
+    # What ran, not the scenario file (lockstep, 32 s): the overrides of the command line,
+    # and the nodes.
+    info = subprocess.run(['robotica', 'info', str(bag)], capture_output=True, text=True,
+                          timeout=60)
+    assert info.returncode == 0, info.stderr
+    assert f'pacing realtime, duration {DURATION:g} s, step period {STEP:g} s (as run' \
+        in info.stdout
+    # This test's own /clock reader is a node of the graph (it logs on /rosout): named as not
+    # robotica's, but it published no run topic, so the scenario's description stands.
+    assert 'test_faults_clock: not started by robotica run' in info.stdout
+    assert "the scenario's words" not in info.stdout
+    assert 'simulator (started by robotica run)' in info.stdout
     if name == 'simulator':
         return
     # No command any more: the simulator brakes once the last one is cmd_timeout old.
