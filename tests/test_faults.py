@@ -1,10 +1,11 @@
 """
 Fault tests: a node of a real ``robotica run`` is killed or stalled mid-run.
 
-It is killed with SIGKILL, or stopped with SIGSTOP and continued with SIGCONT. The run is the demo (pure pursuit, encoder odometry) at real-time pacing for 6 s simulated, so
-that simulated time runs with the wall clock and the simulator's stale-command stop
-(``cmd_timeout`` 0.5 s simulated) shows in the recorded truth. The fault comes once the test has
-seen ``/clock`` pass 2 s. What must hold, from the issue's contract (docs/recording.md):
+It is killed with SIGKILL, or stopped with SIGSTOP and continued with SIGCONT. The run is the demo
+(pure pursuit, encoder odometry) at real-time pacing for 6 s simulated, so that simulated time runs
+with the wall clock and the simulator's stale-command stop (``cmd_timeout`` 0.5 s simulated) shows
+in the recorded truth. The fault comes once the test has seen ``/clock`` pass 2 s. What must hold,
+from the issue's contract (docs/recording.md):
 
 - the run ends (no hang: a bounded wait) with exit code 1, and its summary names the node and
   what happened to it (``was killed by SIGKILL``, ``stalled``);
