@@ -29,6 +29,7 @@ from robotica_sim.benchmarks.mobile import mobile_core_benchmark
 from robotica_sim.benchmarks.recorder import RATES, recorder_benchmark
 from robotica_sim.benchmarks.tracking import (format_tracking_table, PATHS, plot_tracking,
                                               POSE_SOURCES, tracking_benchmark, VEHICLES)
+from robotica_sim.cli.options import integer, real
 
 HELP = ('measure the speed of the kinematics, the arm loop, the mobile loop, the tracking '
         'laws or the recorder (robotica bench kin|arm|mobile|tracking|recorder)')
@@ -55,19 +56,20 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         'mobile = the vehicle loop with every sensor and the EKF, '
                         'tracking = the path-tracking laws on three vehicles, '
                         "recorder = the recorder node's throughput")
-    parser.add_argument('--count', type=int, default=1000,
+    parser.add_argument('--count', type=integer(1, 10**7), default=1000,
                         help='kin: random configurations per robot; arm: simulated steps of '
                         'the core and DDS round trips (default 1000; arm: at least 5000 steps '
                         'are used for the core)')
-    parser.add_argument('--loop-duration', type=float,
+    parser.add_argument('--loop-duration', type=real(0.0, 1e5),
                         help='arm, mobile: simulated seconds of the full ROS loop; 0 skips it '
                         '(default 5 for arm, 60 for mobile); recorder: seconds per rate '
                         '(default 5)', default=None)
-    parser.add_argument('--rates', type=float, nargs='+', default=list(RATES), metavar='RATE',
+    parser.add_argument('--rates', type=real(0.0, 1e7, low_open=True), nargs='+',
+                        default=list(RATES), metavar='RATE',
                         help='recorder: offered rates [messages/s]')
-    parser.add_argument('--baseline-ik-count', type=int, default=100,
+    parser.add_argument('--baseline-ik-count', type=integer(1, 10**6), default=100,
                         help='poses given to the slow baseline ikine (default 100)')
-    parser.add_argument('--seed', type=int, default=0,
+    parser.add_argument('--seed', type=integer(0, 2**32 - 1), default=0,
                         help='kin: seed of the configurations; tracking: seed of the sensor '
                         'noise (default 0)')
     parser.add_argument('--laws', nargs='+', choices=LAWS, default=list(LAWS),
@@ -101,9 +103,6 @@ def format_table(rows: list[BenchmarkRow]) -> str:
 
 def main(args: argparse.Namespace) -> int:
     """Run the benchmark and print its table; return the exit code."""
-    if args.count < 1 or args.baseline_ik_count < 1:
-        print('robotica bench: --count and --baseline-ik-count must be >= 1', file=sys.stderr)
-        return 2
     show = not args.quiet and sys.stderr.isatty()
 
     def progress(message: str) -> None:
@@ -127,11 +126,7 @@ def main(args: argparse.Namespace) -> int:
 
 
 def _loop_duration(args: argparse.Namespace, default: float) -> float | None:
-    duration = default if args.loop_duration is None else args.loop_duration
-    if duration < 0.0:
-        print('robotica bench: --loop-duration must be >= 0', file=sys.stderr)
-        return None
-    return duration
+    return default if args.loop_duration is None else args.loop_duration
 
 
 def _arm(args: argparse.Namespace, progress) -> int:

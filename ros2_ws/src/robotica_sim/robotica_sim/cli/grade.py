@@ -23,6 +23,7 @@ from typing import Any
 
 from robotica_sim.bags.info import BagError
 from robotica_sim.bags.run_record import RunRecord
+from robotica_sim.cli.options import integer
 from robotica_sim.grading.metrics import compute_metrics, METRICS
 from robotica_sim.grading.rubric import (Bound, check_metrics, load_rubric, resolve_rubric,
                                          Rubric, RubricError)
@@ -41,13 +42,6 @@ GRADED_TOPICS = tuple(TOPICS[role] for role in (
     'joint_states', 'controller', 'torques'))
 
 
-def _jobs(text: str) -> int:
-    value = int(text)
-    if value < 1:
-        raise argparse.ArgumentTypeError(f'must be >= 1, got {value}')
-    return value
-
-
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Add the arguments of ``robotica grade``."""
     parser.add_argument('path', type=Path,
@@ -56,7 +50,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help='rubric YAML file, or the name of a shipped rubric')
     parser.add_argument('--json', type=Path, default=None, metavar='OUT.json',
                         help="write every bag's metrics and checks as JSON ('-': stdout)")
-    parser.add_argument('--jobs', type=_jobs, default=os.cpu_count() or 1,
+    parser.add_argument('--jobs', type=integer(1, 1024), default=os.cpu_count() or 1,
                         help=f'bags graded in parallel (default: CPUs, {os.cpu_count()})')
     parser.add_argument('--quiet', action='store_true', help='no progress lines on stderr')
 

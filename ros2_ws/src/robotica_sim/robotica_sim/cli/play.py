@@ -9,7 +9,7 @@ is published at each message's bag time, so nodes with ``use_sim_time`` follow t
 Publishers are reliable; a topic with a single message (a path, a model) is also
 transient-local, so that a node started later still receives it. The player waits ``--wait``
 seconds for subscribers to match before it starts, shows its progress on stderr and exits with
-0 at the end, 1 for a bag it cannot read, 2 for bad arguments, 130 on Ctrl-C.
+0 at the end, 1 for a bag it cannot read, 2 for bad arguments, 130 on Ctrl-C or SIGTERM.
 """
 import argparse
 from pathlib import Path
@@ -19,6 +19,7 @@ import time
 from robotica_sim.bags.info import BagError
 from robotica_sim.bags.player import open_playback, parse_remaps, wall_time
 from robotica_sim.bags.typestore import message_class
+from robotica_sim.cli.options import real
 
 HELP = 'republish a bag in time order with /clock'
 EPILOG = """examples:
@@ -28,41 +29,42 @@ EPILOG = """examples:
 """
 PROGRESS_PERIOD = 1.0   # [s] wall clock between progress lines
 ACK_TIMEOUT = 2.0       # [s] longest wait per topic for the subscribers' acknowledgements
+MIN_RATE = 1e-3         # a day's bag at this rate replays in about 3 years: slower is a typo
+MAX_RATE = 1e6
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Add the arguments of ``robotica play``."""
     parser.add_argument('bag', type=Path, help='bag directory (with metadata.yaml)')
-    parser.add_argument('--rate', type=float, default=1.0,
-                        help='speed-up of the replay (> 0; 2: twice as fast)')
+    parser.add_argument('--rate', type=real(MIN_RATE, MAX_RATE), default=1.0,
+                        help=f'speed-up of the replay ({MIN_RATE:g} to {MAX_RATE:g}; 2: twice '
+                        'as fast)')
     parser.add_argument('--topics', nargs='+', default=None, metavar='TOPIC',
                         help='replay only these topics (default: all)')
     parser.add_argument('--remap', nargs='+', default=[], metavar='FROM:=TO',
                         help='publish topic FROM as TO')
-    parser.add_argument('--wait', type=float, default=1.0,
+    parser.add_argument('--wait', type=real(0.0, 3600.0), default=1.0,
                         help='seconds to wait for subscribers to match before the start')
     parser.add_argument('--quiet', action='store_true', help='no progress on stderr')
 
 
 def main(args: argparse.Namespace) -> int:
     """Replay the bag; return the exit code."""
-    if not (args.rate > 0.0 and args.rate < float('inf')) or args.wait < 0.0:
-        print('robotica play: --rate must be > 0 and finite, --wait >= 0', file=sys.stderr)
-        return 2
     try:
         remaps = parse_remaps(args.remap)
-        playback = open_playback(args.bag, args.topics, remaps)
     except ValueError as err:
-        print(f'robotica play: {err}', file=sys.stderr)
+        print(f'robotica play: error: {err}', file=sys.stderr)
         return 2
-    except BagError as err:
-        print(f'robotica play: {err}', file=sys.stderr)
-        return 1
+    playback = open_playback(args.bag, args.topics, remaps)
     import rclpy
     from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
+    from rclpy.signals import SignalHandlerOptions
     from rosgraph_msgs.msg import Clock
 
-    rclpy.init()
+    # No ROS arguments (rcl would read --remap's FROM:=TO as a deprecated remapping of its own),
+    # and no rclpy signal handlers: Ctrl-C and SIGTERM raise KeyboardInterrupt here (see
+    # robotica_sim.cli.main), so the replay stops between two publications, never inside one.
+    rclpy.init(args=[], signal_handler_options=SignalHandlerOptions.NO)
     node = rclpy.create_node('robotica_play')
     try:
         publishers = {}

@@ -20,8 +20,8 @@ from pathlib import Path
 import sys
 import time
 
-from robotica_sim.bags.info import BagError
-from robotica_sim.grading.report import default_output, ReportError, write_report
+from robotica_sim.cli.options import real
+from robotica_sim.grading.report import default_output, write_report
 from robotica_sim.grading.series import load_run
 
 HELP = 'draw a recorded run: PNG figures and an HTML page'
@@ -30,6 +30,7 @@ EPILOG = """examples:
                        writes runs/demo-20261123-101500/report/index.html and its PNGs
   robotica report my_bag --output /tmp/my_report --robot-every 2
 """
+MAX_ROBOTS = 1000   # robots drawn on the trajectory figure
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -38,19 +39,15 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument('--output', '-o', type=Path, metavar='DIR',
                         help='directory of the report (created; files of the same names are '
                         'replaced); default <run>/report for runs/<run>/bag, else <bag>_report')
-    parser.add_argument('--robot-every', type=float, metavar='SECONDS',
+    parser.add_argument('--robot-every', type=real(0.0, 1e7, low_open=True), metavar='SECONDS',
                         help='period [s] of simulated time at which the robot is drawn on the '
                         'trajectory; default: 0.5, 1, 2, 5, 10 ... s, the shortest that draws '
-                        'at most 15 intervals')
+                        f'at most 15 intervals; at most {MAX_ROBOTS} robots are drawn')
     parser.add_argument('--quiet', action='store_true', help='no progress on stderr')
 
 
 def main(args: argparse.Namespace) -> int:
     """Write the report of the bag; return the exit code."""
-    if args.robot_every is not None and not args.robot_every > 0.0:
-        print(f'robotica report: --robot-every must be > 0 s, got {args.robot_every:g}',
-              file=sys.stderr)
-        return 2
     show = not args.quiet and sys.stderr.isatty()
 
     def progress(message: str) -> None:
@@ -60,14 +57,17 @@ def main(args: argparse.Namespace) -> int:
     start = time.perf_counter()
     output = args.output if args.output is not None else default_output(args.bag)
     progress(f'reading {args.bag}')
-    try:
-        run = load_run(args.bag)
-    except BagError as err:
-        print(f'robotica report: {err}', file=sys.stderr)
-        return 1
+    run = load_run(args.bag)
+    span = max([run.duration] + [float(s.t[-1] - s.t[0]) for s in (run.truth, run.odom)
+                                 if s is not None and len(s) > 1])
+    if args.robot_every is not None and span / args.robot_every > MAX_ROBOTS:
+        print(f'robotica report: error: --robot-every {args.robot_every:g} would draw the robot '
+              f'{span / args.robot_every:.3g} times over the {span:g} s run; at most '
+              f'{MAX_ROBOTS}: use >= {span / MAX_ROBOTS:.3g}', file=sys.stderr)
+        return 2
     try:
         report = write_report(run, output, args.robot_every, progress)
-    except (ReportError, ValueError) as err:
+    except ValueError as err:   # the scenario's GPS origin
         print(f'robotica report: {err}', file=sys.stderr)
         return 1
     except OSError as err:

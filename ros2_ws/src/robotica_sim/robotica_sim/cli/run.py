@@ -8,7 +8,6 @@ matched every topic; starts the simulation; waits for its end time; stops every 
 on Ctrl-C or when a node dies) and prints the bag's path and a one-line summary.
 """
 import argparse
-import dataclasses
 import json
 import os
 from pathlib import Path
@@ -26,9 +25,10 @@ from rclpy.qos import QoSProfile, ReliabilityPolicy
 from rclpy.signals import SignalHandlerOptions
 from robotica_sim.bags.info import BagError
 from robotica_sim.bags.repair import partial_reason, repair_command
+from robotica_sim.cli.options import domain_id, domain_warning, real
 from robotica_sim.grading.summary import summarize_bag
 from robotica_sim.runs.plan import NodeSpec, plan_run, recorded_topics
-from robotica_sim.runs.scenario import load_scenario, ScenarioError
+from robotica_sim.runs.scenario import load_scenario, with_overrides
 from robotica_sim.runs.supervisor import child_environment, ProcessSupervisor
 from rosgraph_msgs.msg import Clock
 from std_srvs.srv import Trigger
@@ -62,13 +62,15 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help='run directory to create (default: runs/<scenario>-<time>)')
     parser.add_argument('--pacing', choices=['lockstep', 'realtime'], default=None,
                         help="override the scenario's pacing")
-    parser.add_argument('--duration', type=float, default=None,
+    parser.add_argument('--duration', type=real(0.0, 1e7, low_open=True), default=None,
                         help="override the scenario's duration [s, simulated]")
-    parser.add_argument('--domain-id', type=int, default=None,
-                        help='ROS_DOMAIN_ID of the run (default: $ROS_DOMAIN_ID, else random)')
-    parser.add_argument('--discovery-timeout', type=float, default=30.0,
+    parser.add_argument('--domain-id', type=domain_id, default=None,
+                        help='ROS_DOMAIN_ID of the run, 0-232 (above 101 with a warning: see '
+                        'docs/scenarios.md) (default: $ROS_DOMAIN_ID, else random)')
+    parser.add_argument('--discovery-timeout', type=real(0.0, 3600.0, low_open=True),
+                        default=30.0,
                         help='longest wait for the nodes to discover each other [s]')
-    parser.add_argument('--timeout', type=float, default=None,
+    parser.add_argument('--timeout', type=real(0.0, 1e7, low_open=True), default=None,
                         help='longest wall-clock time of the run [s] (default: 120 + 10 x '
                         'duration)')
     parser.add_argument('--json', action='store_true', help='print the summary as JSON')
@@ -271,7 +273,8 @@ def _simulate(args, scenario, run_dir: Path, supervisor: ProcessSupervisor) -> f
         _log(args, f'running {scenario.name}: {scenario.duration} s simulated, '
                    f'{scenario.pacing} pacing')
         start = time.monotonic()
-        timeout = args.timeout or 120.0 + 10.0 * scenario.duration
+        timeout = args.timeout if args.timeout is not None else \
+            120.0 + 10.0 * scenario.duration
         others = [n for n in names if n != 'simulator']
         fault = None    # the first node that died: (name, code), and when the run ends for it
         while supervisor.returncode('simulator') is None:
@@ -304,25 +307,22 @@ def _simulate(args, scenario, run_dir: Path, supervisor: ProcessSupervisor) -> f
         node.destroy_node()
 
 
-def _raise_interrupt(signum, frame):
-    raise KeyboardInterrupt
-
-
 def main(args: argparse.Namespace) -> int:
     """Run the scenario; return the exit code."""
-    try:
-        scenario = load_scenario(args.scenario)
-        overrides = {k: v for k, v in (('pacing', args.pacing), ('duration', args.duration))
-                     if v is not None}
-        scenario = dataclasses.replace(scenario, **overrides)
-    except ScenarioError as err:
-        print(f'robotica run: error: {err}', file=sys.stderr)
-        return 2
-    domain = args.domain_id if args.domain_id is not None else int(
-        os.environ.get('ROS_DOMAIN_ID') or random.randint(1, 101))
-    if not 0 <= domain <= 101:
-        print(f'robotica run: error: domain id must be in 0..101, got {domain}', file=sys.stderr)
-        return 2
+    # Every error of the scenario and its plan (a law, a shape, a gain) before anything starts;
+    # a ScenarioError is one line and exit 2 (robotica_sim.cli.main).
+    scenario = with_overrides(load_scenario(args.scenario), pacing=args.pacing,
+                              duration=args.duration)
+    plan_run(scenario)
+    domain = args.domain_id
+    if domain is None:
+        try:
+            domain = domain_id(os.environ.get('ROS_DOMAIN_ID') or str(random.randint(1, 101)))
+        except argparse.ArgumentTypeError as err:
+            print(f'robotica run: error: ROS_DOMAIN_ID {err}', file=sys.stderr)
+            return 2
+    if domain_warning(domain):
+        _log(args, f'warning: {domain_warning(domain)}')
     os.environ.update(child_environment(domain))
     run_dir = args.output_dir or Path('runs') / (
         f'{scenario.name}-{time.strftime("%Y%m%d-%H%M%S")}')
@@ -331,8 +331,11 @@ def main(args: argparse.Namespace) -> int:
     except FileExistsError:
         print(f'robotica run: error: {run_dir} exists already', file=sys.stderr)
         return 2
+    except OSError as err:
+        print(f'robotica run: error: cannot create {run_dir}: {err.strerror or err}',
+              file=sys.stderr)
+        return 2
     supervisor = ProcessSupervisor(run_dir / 'logs', dict(os.environ))
-    signal.signal(signal.SIGTERM, _raise_interrupt)
     rclpy.init(signal_handler_options=SignalHandlerOptions.NO)
     code = 0
     try:

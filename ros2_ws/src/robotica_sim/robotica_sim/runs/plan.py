@@ -6,6 +6,7 @@ specifications (one process each) and the list of topics the recorder must recor
 pure data; starting the processes is :mod:`robotica_sim.runs.supervisor`'s job.
 """
 from dataclasses import dataclass, field
+import inspect
 import math
 
 import numpy as np
@@ -18,6 +19,7 @@ from robotica_sim.sensors.gps import gps_preset
 
 PATH_SHAPES = ('straight_line', 'circle', 'rounded_rectangle', 'figure_eight', 'polyline',
                'parabola', 'unicycle_trajectory')
+MAX_PATH_POINTS = 200_000   # of a reference path (one nav_msgs/Path message)
 TRACKER_NODE_KEYS = ('pose_source', 'max_cross_track')   # tracker: keys that are not gains
 STATUS_TOPIC = '/simulator/status'
 TRACKING_ERROR_TOPIC = '/path_tracker/tracking_error'
@@ -64,13 +66,42 @@ def reference_path(scenario: Scenario) -> tuple[list[list[float]], list[float] |
     if spec.shape not in PATH_SHAPES:
         raise ScenarioError(f'{where}: path.shape must be one of {PATH_SHAPES}, '
                             f'got {spec.shape!r}')
+    shape = getattr(path_shapes, spec.shape)
     try:
-        samples = np.asarray(getattr(path_shapes, spec.shape)(**spec.args), dtype=float)
-    except (TypeError, ValueError) as err:
-        raise ScenarioError(f'{where}: path ({spec.shape}): {err}') from None
+        count = _point_count(shape, spec.args)
+        if count > MAX_PATH_POINTS:
+            raise ValueError(f'about {count:.3g} points, more than {MAX_PATH_POINTS}: '
+                             'sample it more coarsely (spacing or step) or make it shorter')
+        samples = np.asarray(shape(**spec.args), dtype=float)
+    except (TypeError, ValueError, OverflowError, ZeroDivisionError) as err:
+        raise ScenarioError(f'{where}: path ({spec.shape}): {_one_line(err)}') from None
     points = [[round(float(x), 9), round(float(y), 9)]   # [m], to 1 nm
               for x, y in samples[:, :2]]
     return points, [float(t) for t in samples[:, 2]] if samples.shape[1] == 3 else None
+
+
+def _one_line(err: Exception) -> str:
+    return ' '.join(str(err).split())
+
+
+def _point_count(shape, args: dict) -> float:
+    """
+    Return about how many points ``shape(**args)`` gives, without sampling it finely.
+
+    The shape is drawn once with a huge spacing (step): one chord per straight, the fewest per
+    arc; its length (its duration for a trajectory) over the asked spacing (step) bounds the
+    count, a chord being at least 0.8 of its arc there. Raises what the shape raises for bad
+    arguments.
+    """
+    name = 'step' if 'step' in inspect.signature(shape).parameters else 'spacing'
+    fine = args.get(name, inspect.signature(shape).parameters[name].default)
+    if isinstance(fine, bool) or not isinstance(fine, (int, float)) or not 0.0 < fine < 1e300:
+        raise ValueError(f'{name} must be a number > 0, got {fine!r}')
+    coarse = np.asarray(shape(**{**args, name: 1e12}), dtype=float)
+    if name == 'step':
+        return len(coarse) + float(coarse[-1, 2]) / fine
+    length = float(np.sum(np.hypot(*np.diff(coarse[:, :2], axis=0).T)))
+    return len(coarse) + length / (0.8 * fine)
 
 
 def path_points(scenario: Scenario) -> list[list[float]]:
@@ -133,7 +164,7 @@ def _numbers(value, where: str) -> list[float]:
     """Return a number or a list of numbers as a list of floats, or raise ScenarioError."""
     values = value if isinstance(value, list) else [value]
     if not values or any(isinstance(v, bool) or not isinstance(v, (int, float))
-                         or not math.isfinite(v) for v in values):
+                         or abs(v) > 1e300 or not math.isfinite(v) for v in values):
         raise ScenarioError(f'{where} must be a finite number or a list of them, got {value!r}')
     return _floats(values)
 
@@ -247,10 +278,18 @@ def _plan_mobile(scenario: Scenario) -> list[NodeSpec]:
         if key in TRACKER_NODE_KEYS:
             gains[key] = value if isinstance(value, str) else \
                 _numbers(value, f'{where}: tracker.{key}')[0]
-        elif isinstance(value, str) and specs[key].choices:
+        elif specs[key].choices:
+            if value not in specs[key].choices:
+                raise ScenarioError(f'{where}: tracker.{key} must be one of '
+                                    f'{specs[key].choices}, got {value!r}')
             gains[f'{law}.{key}'] = value                        # e.g. frenet law: nonlinear
         else:
             numbers = _numbers(value, f'{where}: tracker.{key}')   # open_loop takes lists
+            low, high = specs[key].low, specs[key].high
+            if any((low is not None and v < low) or (high is not None and v > high)
+                   for v in numbers):
+                raise ScenarioError(f'{where}: tracker.{key} must be in [{low}, {high}], got '
+                                    f'{value!r}')
             if isinstance(specs[key].default, int):
                 if numbers[0] != int(numbers[0]):
                     raise ScenarioError(f'{where}: tracker.{key} must be an integer, got '

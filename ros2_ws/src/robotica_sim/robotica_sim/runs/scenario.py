@@ -6,11 +6,14 @@ Two kinds of run: a mobile robot (``robot.type`` one of
 ``tracker``) and a manipulator (``robot.type: manipulator``, sections
 ``arm``, ``reference``, ``controller``, book ch. 8). A section of the other kind is an error.
 
-A scenario is a YAML file, validated strictly when loaded: an unknown key, a value of the wrong
-type or out of range gives a :class:`ScenarioError` naming the key, never a silently ignored
-setting. Shipped scenarios live in ``share/robotica_sim/scenarios`` and can be named without
+A scenario is a YAML file, validated strictly when loaded: an unknown or repeated key, a value
+of the wrong type or out of range, a file that is not UTF-8 text gives a :class:`ScenarioError`
+of one line naming the file and the key, never a silently ignored setting. The plan checks the
+rest (:mod:`robotica_sim.runs.plan`: the path shape and its arguments, the tracker's law and
+gains). Shipped scenarios live in ``share/robotica_sim/scenarios`` and can be named without
 their extension (``robotica run demo``; :func:`robotica_sim.runs.shipped.resolve_shipped`).
 """
+import dataclasses
 from dataclasses import dataclass, field, fields, is_dataclass
 import math
 from pathlib import Path
@@ -124,6 +127,13 @@ class TrackerSpec:
 
 
 ARM_MODELS = ('puma560', 'two_link_arm')
+MAX_FILE_SIZE = 1_000_000           # [bytes] of a scenario file
+MIN_STEP_PERIOD = 1e-4              # [s] simulated
+MAX_STEPS = 10_000_000              # simulation steps of a run (duration / step_period)
+SEED_MAX = (2**31 - 1) // 10 - 1
+"""The largest seed: each sensor emulator gets 10 seed + k (k < 10), which its ``seed``
+parameter takes up to 2**31 - 1."""
+INT64_MAX = 2**63 - 1               # an integer parameter of a node is int64
 MOBILE_SECTIONS = ('path', 'sensors', 'odometry', 'tracker')
 ARM_SECTIONS = ('arm', 'reference', 'controller')
 
@@ -198,9 +208,19 @@ class Scenario:
 
     def __post_init__(self) -> None:
         checks = [
-            (self.duration > 0.0 and math.isfinite(self.duration), 'duration must be > 0 s'),
+            (MIN_STEP_PERIOD <= self.step_period <= 1.0,
+             f'step_period must be in [{MIN_STEP_PERIOD:g}, 1] s, got {self.step_period:g}'),
+            (self.duration >= self.step_period,
+             f'duration must be at least one step_period ({self.step_period:g} s), '
+             f'got {self.duration:g} s'),
+            (self.duration <= MAX_STEPS * self.step_period,
+             f'duration must be at most {MAX_STEPS} steps of {self.step_period:g} s '
+             f'({MAX_STEPS * self.step_period:g} s), got {self.duration:g} s'),
+            (0 <= self.seed <= SEED_MAX, f'seed must be in 0..{SEED_MAX}, got {self.seed}'),
             (self.pacing in ('lockstep', 'realtime'), 'pacing must be lockstep or realtime'),
-            (0.0 < self.step_period <= 1.0, 'step_period must be in (0, 1] s'),
+            (0 < len(self.name) <= 100 and not self.name.startswith('.')
+             and all(c.isprintable() and c not in '/\\' for c in self.name),
+             'name must be 1 to 100 printable characters, no / or \\, not starting with .'),
             (self.robot.type in VEHICLE_TYPES + ('manipulator',),
              f'robot.type must be manipulator or one of {VEHICLE_TYPES}'),
             (self.arm.model in ARM_MODELS, f'arm.model must be one of {ARM_MODELS}'),
@@ -265,37 +285,45 @@ class Scenario:
                 raise ScenarioError(f'{self.source or self.name}: {message}')
 
 
+def _short(value: Any) -> str:
+    """Return the repr of a value from a file, cut to 60 characters."""
+    text = repr(value)
+    return text if len(text) <= 60 else f'{text[:57]}...'
+
+
 def _convert(value: Any, kind: Any, where: str) -> Any:
     if is_dataclass(kind):
         if not isinstance(value, dict):
-            raise ScenarioError(f'{where}: expected a mapping, got {value!r}')
+            raise ScenarioError(f'{where}: expected a mapping, got {_short(value)}')
         return _build(kind, value, where)
     origin = typing.get_origin(kind)
     if origin is tuple:
         if not isinstance(value, (list, tuple)):
-            raise ScenarioError(f'{where}: expected a list of numbers, got {value!r}')
+            raise ScenarioError(f'{where}: expected a list of numbers, got {_short(value)}')
         return tuple(_convert(v, float, f'{where}[{i}]') for i, v in enumerate(value))
     if kind is dict:
         if not isinstance(value, dict):
-            raise ScenarioError(f'{where}: expected a mapping, got {value!r}')
+            raise ScenarioError(f'{where}: expected a mapping, got {_short(value)}')
         return dict(value)
     if kind is float:
         if isinstance(value, bool) or not isinstance(value, (int, float)):
-            raise ScenarioError(f'{where}: expected a number, got {value!r}')
-        if not math.isfinite(value):
-            raise ScenarioError(f'{where}: must be finite, got {value!r}')
+            raise ScenarioError(f'{where}: expected a number, got {_short(value)}')
+        if abs(value) > 1e300 or not math.isfinite(value):   # 1e300: an int beyond float
+            raise ScenarioError(f'{where}: must be a finite number, got {_short(value)}')
         return float(value)
     if kind is int:
         if isinstance(value, bool) or not isinstance(value, int):
-            raise ScenarioError(f'{where}: expected an integer, got {value!r}')
+            raise ScenarioError(f'{where}: expected an integer, got {_short(value)}')
+        if abs(value) > INT64_MAX:
+            raise ScenarioError(f'{where}: must be within +-(2**63 - 1), got {_short(value)}')
         return value
     if kind is bool:
         if not isinstance(value, bool):
-            raise ScenarioError(f'{where}: expected true or false, got {value!r}')
+            raise ScenarioError(f'{where}: expected true or false, got {_short(value)}')
         return value
     if kind in (str, Optional[str]):
         if not isinstance(value, str):
-            raise ScenarioError(f'{where}: expected a string, got {value!r}')
+            raise ScenarioError(f'{where}: expected a string, got {_short(value)}')
         return value
     raise TypeError(f'{where}: unsupported field type {kind!r}')
 
@@ -346,16 +374,79 @@ def resolve_scenario_path(name_or_path: str) -> Path:
         raise ScenarioError(str(err)) from None
 
 
+class _UniqueKeyLoader(yaml.SafeLoader):
+    """A safe YAML loader that refuses a key given twice in a mapping (else the last wins)."""
+
+    def construct_mapping(self, node: yaml.MappingNode, deep: bool = False) -> dict:
+        """Return the mapping of ``node``; ConstructorError for a key given twice."""
+        self.flatten_mapping(node)   # merge keys (<<) first, as SafeLoader does
+        seen = set()
+        for key_node, _ in node.value:
+            key = self.construct_object(key_node, deep=True)
+            if isinstance(key, (str, int, float, bool)) or key is None:
+                if key in seen:
+                    raise yaml.constructor.ConstructorError(
+                        None, None, f'key {key!r} given twice',
+                        key_node.start_mark)
+                seen.add(key)
+        return super().construct_mapping(node, deep)
+
+
+def _read_yaml(path: Path) -> Any:
+    """
+    Return the YAML document of a small UTF-8 file, or raise ScenarioError in one line.
+
+    Refused: a file that cannot be read, larger than :data:`MAX_FILE_SIZE`, not UTF-8 text,
+    not YAML, or with a key given twice in a mapping.
+    """
+    try:
+        with open(path, 'rb') as file:
+            raw = file.read(MAX_FILE_SIZE + 1)
+    except OSError as err:
+        raise ScenarioError(f'{path}: cannot read: {err.strerror or err}') from None
+    if len(raw) > MAX_FILE_SIZE:
+        raise ScenarioError(f'{path}: larger than {MAX_FILE_SIZE} bytes: not a scenario')
+    try:
+        text = raw.decode('utf-8')
+    except UnicodeDecodeError as err:
+        raise ScenarioError(f'{path}: not a text file (not UTF-8: byte 0x{raw[err.start]:02x} '
+                            f'at offset {err.start})') from None
+    try:
+        return yaml.load(text, Loader=_UniqueKeyLoader)
+    except yaml.YAMLError as err:
+        mark = getattr(err, 'problem_mark', None)
+        where = f' at line {mark.line + 1}, column {mark.column + 1}' if mark else ''
+        reason = getattr(err, 'problem', None) or str(err)
+        raise ScenarioError(f'{path}: not valid YAML{where}: {" ".join(reason.split())}') \
+            from None
+    except RecursionError:
+        raise ScenarioError(f'{path}: nested too deeply') from None
+
+
 def load_scenario(name_or_path: str) -> Scenario:
     """Load and validate a scenario (a YAML file or a shipped scenario's name)."""
     path = resolve_scenario_path(name_or_path)
-    try:
-        data = yaml.safe_load(path.read_text())
-    except yaml.YAMLError as err:
-        raise ScenarioError(f'{path}: not valid YAML: {err}') from None
+    data = _read_yaml(path)
     if not isinstance(data, dict):
-        raise ScenarioError(f'{path}: a scenario is a YAML mapping')
+        raise ScenarioError(f'{path}: a scenario is a YAML mapping, got {_short(data)}')
     data.setdefault('name', path.stem)
     data['source'] = str(path)
     _check_sections(data, str(path))
     return _build(Scenario, _normalise(data), str(path))
+
+
+def with_overrides(scenario: Scenario, **options: Any) -> Scenario:
+    """
+    Return ``scenario`` with the command line's values (``duration=60.0``; None: not given).
+
+    An invalid combination names the options, not the file: ``--duration 0.001 (with
+    demo.yaml): duration must be at least one step_period (0.02 s), got 0.001 s``.
+    """
+    given = {key: value for key, value in options.items() if value is not None}
+    try:
+        return dataclasses.replace(scenario, **given)
+    except ScenarioError as err:
+        where = scenario.source or scenario.name
+        flags = ', '.join(f'--{key.replace("_", "-")} {value}' for key, value in given.items())
+        raise ScenarioError(f'{flags} (with {where}): '
+                            f'{str(err).removeprefix(f"{where}: ")}') from None
