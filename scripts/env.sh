@@ -24,6 +24,22 @@ unset ROS_LOCALHOST_ONLY   # deprecated; when set it overrides the discovery ran
 export ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST
 export FASTRTPS_DEFAULT_PROFILES_FILE=$ROBOTICA_ROOT/config/fastdds_localhost.xml
 export ROS_DOMAIN_ID=${ROS_DOMAIN_ID:-$((RANDOM % 100 + 1))}
+# ROS 2 takes 0-232; above 101 the DDS ports enter Linux's ephemeral range (docs/scenarios.md).
+case $ROS_DOMAIN_ID in
+  *[!0-9]*) _robotica_domain=bad ;;
+  *) if [ "${#ROS_DOMAIN_ID}" -gt 3 ] || [ "$ROS_DOMAIN_ID" -gt 232 ]; then _robotica_domain=bad
+     elif [ "$ROS_DOMAIN_ID" -gt 101 ]; then _robotica_domain=high
+     else _robotica_domain=ok; fi ;;
+esac
+if [ "$_robotica_domain" = bad ]; then
+  echo "robotica: ROS_DOMAIN_ID must be an integer in 0-232, got '$ROS_DOMAIN_ID'" >&2
+  unset _robotica_domain
+  return 1 2>/dev/null || exit 1
+elif [ "$_robotica_domain" = high ]; then
+  echo "robotica: warning: ROS_DOMAIN_ID $ROS_DOMAIN_ID > 101: its DDS ports lie in the" \
+    "ephemeral port range; use 0-101 if discovery fails (docs/scenarios.md)" >&2
+fi
+unset _robotica_domain
 export ROS_LOG_DIR=${ROS_LOG_DIR:-$ROBOTICA_ROOT/ros2_ws/log/ros}
 case $- in *u*) _robotica_nounset=1 ;; *) _robotica_nounset= ;; esac
 set +u   # colcon's setup.bash reads unset variables

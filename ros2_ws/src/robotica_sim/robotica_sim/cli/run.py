@@ -102,7 +102,8 @@ def _argv(spec: NodeSpec, params_file: Path) -> list[str]:
     return argv
 
 
-def _prepare(args: argparse.Namespace, scenario, run_dir: Path) -> list[NodeSpec]:
+def _prepare(args: argparse.Namespace, scenario, plan: list[NodeSpec],
+             run_dir: Path) -> list[NodeSpec]:
     bag = run_dir / 'bag'
     scenario_copy = run_dir / 'scenario.yaml'
     params_file = run_dir / 'params.yaml'
@@ -111,7 +112,7 @@ def _prepare(args: argparse.Namespace, scenario, run_dir: Path) -> list[NodeSpec
     recorder = NodeSpec('robotica_sim', 'recorder', 'recorder', {
         'output': str(bag), 'topics': list(recorded_topics(scenario)),
         'metadata_files': [str(scenario_copy), str(params_file), str(run_file)]})
-    nodes = [recorder] + plan_run(scenario)
+    nodes = [recorder] + plan
     # What ran, as run (the recorder stores it in the bag: robotica_sim.bags.run_record).
     overrides = {k: v for k, v in (('pacing', args.pacing), ('duration', args.duration))
                  if v is not None}
@@ -251,9 +252,10 @@ def _progress(args, t: float, duration: float) -> None:
           file=sys.stderr, flush=True)
 
 
-def _simulate(args, scenario, run_dir: Path, supervisor: ProcessSupervisor) -> float:
+def _simulate(args, scenario, plan: list[NodeSpec], run_dir: Path,
+              supervisor: ProcessSupervisor) -> float:
     """Start the nodes, run the simulation to its end; return the wall-clock run time [s]."""
-    nodes = _prepare(args, scenario, run_dir)
+    nodes = _prepare(args, scenario, plan, run_dir)
     names = [spec.name for spec in nodes]
     for spec in nodes:
         supervisor.start(spec.name, _argv(spec, run_dir / 'params.yaml'))
@@ -313,7 +315,7 @@ def main(args: argparse.Namespace) -> int:
     # a ScenarioError is one line and exit 2 (robotica_sim.cli.main).
     scenario = with_overrides(load_scenario(args.scenario), pacing=args.pacing,
                               duration=args.duration)
-    plan_run(scenario)
+    plan = plan_run(scenario)
     domain = args.domain_id
     if domain is None:
         try:
@@ -339,7 +341,7 @@ def main(args: argparse.Namespace) -> int:
     rclpy.init(signal_handler_options=SignalHandlerOptions.NO)
     code = 0
     try:
-        _simulate(args, scenario, run_dir, supervisor)
+        _simulate(args, scenario, plan, run_dir, supervisor)
     except RunFailed as err:
         print(f'robotica run: failed: {err}', file=sys.stderr)
         code = 1
