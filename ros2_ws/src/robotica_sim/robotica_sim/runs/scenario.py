@@ -128,6 +128,7 @@ class TrackerSpec:
 
 ARM_MODELS = ('puma560', 'two_link_arm')
 MAX_FILE_SIZE = 1_000_000           # [bytes] of a scenario file
+MAX_VALUES = 1_000_000              # keys, values and list items of a scenario
 MIN_STEP_PERIOD = 1e-4              # [s] simulated
 MAX_STEPS = 10_000_000              # simulation steps of a run (duration / step_period)
 SEED_MAX = (2**31 - 1) // 10 - 1
@@ -397,7 +398,8 @@ def _read_yaml(path: Path) -> Any:
     Return the YAML document of a small UTF-8 file, or raise ScenarioError in one line.
 
     Refused: a file that cannot be read, larger than :data:`MAX_FILE_SIZE`, not UTF-8 text,
-    not YAML, or with a key given twice in a mapping.
+    not YAML, with a key given twice in a mapping, or of more than :data:`MAX_VALUES` values
+    once its aliases are expanded.
     """
     try:
         with open(path, 'rb') as file:
@@ -412,7 +414,7 @@ def _read_yaml(path: Path) -> Any:
         raise ScenarioError(f'{path}: not a text file (not UTF-8: byte 0x{raw[err.start]:02x} '
                             f'at offset {err.start})') from None
     try:
-        return yaml.load(text, Loader=_UniqueKeyLoader)
+        data = yaml.load(text, Loader=_UniqueKeyLoader)
     except yaml.YAMLError as err:
         mark = getattr(err, 'problem_mark', None)
         where = f' at line {mark.line + 1}, column {mark.column + 1}' if mark else ''
@@ -421,6 +423,25 @@ def _read_yaml(path: Path) -> Any:
             from None
     except RecursionError:
         raise ScenarioError(f'{path}: nested too deeply') from None
+    if _too_many_values(data, MAX_VALUES):   # aliases repeat a value: a few bytes can hold 1e9
+        raise ScenarioError(f'{path}: more than {MAX_VALUES} values (YAML aliases?)')
+    return data
+
+
+def _too_many_values(data: Any, budget: int) -> bool:
+    """Return whether ``data`` holds more than ``budget`` values, aliases counted each time."""
+    stack, count = [data], 0
+    while stack:
+        item = stack.pop()
+        count += 1
+        if count > budget:
+            return True
+        if isinstance(item, dict):
+            stack.extend(item.keys())
+            stack.extend(item.values())
+        elif isinstance(item, list):
+            stack.extend(item)
+    return False
 
 
 def load_scenario(name_or_path: str) -> Scenario:

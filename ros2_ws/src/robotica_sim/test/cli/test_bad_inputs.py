@@ -127,6 +127,9 @@ CORPUS = [
     ('a list, not a mapping', '- 1\n- 2\n', ['a scenario is a YAML mapping']),
     ('empty file', '', ['a scenario is a YAML mapping']),
     ('python object tag', 'name: !!python/object:os.system x\n', ['not valid YAML']),
+    ('alias bomb', 'a: &a [0, 0, 0, 0, 0, 0, 0, 0, 0, 0]\n' + ''.join(
+        f'{x}: &{x} [{", ".join([f"*{y}"] * 10)}]\n' for y, x in zip('abcdefgh', 'bcdefghi'))
+     + 'name: bomb\npath:\n  shape: polyline\n  points: *i\n', ['more than 1000000 values']),
     ('arm: unknown model', _edit(ARM, 'two_link_arm', 'scara'), ['arm.model']),
     ('arm: one mass', _edit(ARM, 'masses: [1.0, 1.0]', 'masses: [1.0]'), ['arm.masses']),
     ('arm: unknown reference key', ARM + 'reference:\n  wobble: 1\n',
