@@ -18,6 +18,7 @@ import argparse
 import dataclasses
 import json
 import math
+from pathlib import Path
 import sys
 import time
 
@@ -181,6 +182,13 @@ def _print_rows(args: argparse.Namespace, rows: list[MeasurementRow]) -> int:
 
 
 def _tracking(args: argparse.Namespace, progress) -> int:
+    if args.plots:   # before the runs, not after them
+        try:
+            Path(args.plots).mkdir(parents=True, exist_ok=True)
+        except OSError as err:
+            print(f'robotica bench: error: cannot create {args.plots}: {err.strerror or err}',
+                  file=sys.stderr)
+            return 2
     start = time.perf_counter()
     results = tracking_benchmark(args.laws, args.vehicles, args.paths, args.poses, args.seed,
                                  progress)

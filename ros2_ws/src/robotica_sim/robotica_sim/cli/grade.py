@@ -271,6 +271,7 @@ def main(args: argparse.Namespace) -> int:
             try:
                 args.json.write_text(text + '\n')
             except OSError as err:
-                print(f'robotica grade: cannot write {args.json}: {err}', file=sys.stderr)
+                print(f'robotica grade: cannot write {args.json}: {err.strerror or err}',
+                      file=sys.stderr)
                 return 2
     return 0 if all(e['status'] in ('pass', 'ok') for e in entries) else 1

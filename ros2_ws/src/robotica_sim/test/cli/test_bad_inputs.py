@@ -270,7 +270,7 @@ VERB_CASES = [
     ('report {bag} --robot-every nan', 2),
     ('bench kin --count 0', 2), ('bench kin --seed -1', 2), ('bench kin --seed 1e99', 2),
     ('bench arm --loop-duration -1', 2), ('bench recorder --rates 0', 2),
-    ('bench warp', 2),
+    ('bench warp', 2), ('bench tracking --plots {file}/plots', 2),
     ('run {missing}', 2), ('run {file}', 2), ('run {binary}/metadata.yaml', 2),
     ('run {tmp}', 2), ('run demo --output-dir {file}/run', 2),
     ('run demo --output-dir /proc/robotica-run', 2),
