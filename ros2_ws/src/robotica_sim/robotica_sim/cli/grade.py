@@ -17,6 +17,7 @@ import json
 import math
 import os
 from pathlib import Path
+import signal
 import sys
 import time
 from typing import Any
@@ -200,6 +201,12 @@ def format_summary(entries: list[dict], root: Path) -> str:
             + f'\n{len(entries)} bag{"s" if len(entries) != 1 else ""}: {tally}')
 
 
+def _leave_signals_to_the_parent() -> None:
+    """Ignore Ctrl-C and SIGTERM in a worker: the parent cancels the pool and says so, once."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_IGN)
+
+
 def _grade_all(bags: list[Path], rubric: Rubric | None, jobs: int, quiet: bool) -> list[dict]:
     """Grade the bags (in a process pool when more than one job); progress on stderr."""
     def progress(done: int, entry: dict) -> None:
@@ -213,7 +220,8 @@ def _grade_all(bags: list[Path], rubric: Rubric | None, jobs: int, quiet: bool) 
             if len(bags) > 1:
                 progress(len(entries), entries[bag])
         return [entries[bag] for bag in bags]
-    with ProcessPoolExecutor(max_workers=min(jobs, len(bags))) as pool:
+    with ProcessPoolExecutor(max_workers=min(jobs, len(bags)),
+                             initializer=_leave_signals_to_the_parent) as pool:
         # Largest bags first, so that the last one to finish is a small one.
         by_size = sorted(bags, key=lambda bag: -sum(
             f.stat().st_size for f in bag.iterdir() if f.is_file()))
