@@ -221,8 +221,9 @@ def test_a_domain_id_above_101_is_allowed_with_a_warning():
     assert '7400' not in domain_warning(150) and '44900' in domain_warning(150)
 
 
-def _write_bag(path: Path, seconds: float = 2.0, rate: float = 10.0) -> Path:
-    """Write a bag with /clock at ``rate`` [Hz] for ``seconds`` [s]."""
+def _write_bag(path: Path, seconds: float = 2.0, rate: float = 10.0,
+               with_path: bool = True) -> Path:
+    """Write a bag with /clock at ``rate`` [Hz] for ``seconds`` [s], and a /path."""
     store = jazzy_typestore()
     types = store.types
     writer = Writer(path, version=9, storage_plugin=StoragePlugin.MCAP)
@@ -233,6 +234,17 @@ def _write_bag(path: Path, seconds: float = 2.0, rate: float = 10.0) -> Path:
         msg = types['rosgraph_msgs/msg/Clock'](clock=types['builtin_interfaces/msg/Time'](
             sec=t // 10**9, nanosec=t % 10**9))
         writer.write(clock, t, store.serialize_cdr(msg, 'rosgraph_msgs/msg/Clock'))
+    if with_path:   # something `robotica report` can draw
+        header = types['std_msgs/msg/Header'](
+            stamp=types['builtin_interfaces/msg/Time'](sec=0, nanosec=0), frame_id='odom')
+        poses = [types['geometry_msgs/msg/PoseStamped'](header=header, pose=types[
+            'geometry_msgs/msg/Pose'](position=types['geometry_msgs/msg/Point'](x=x, y=0.0, z=0.0),
+                                      orientation=types['geometry_msgs/msg/Quaternion'](
+                                          x=0.0, y=0.0, z=0.0, w=1.0)))
+            for x in (0.0, 1.0)]
+        connection = writer.add_connection('/path', 'nav_msgs/msg/Path', typestore=store)
+        writer.write(connection, 0, store.serialize_cdr(
+            types['nav_msgs/msg/Path'](header=header, poses=poses), 'nav_msgs/msg/Path'))
     writer.close()
     return path
 
@@ -267,7 +279,8 @@ VERB_CASES = [
     ('grade {bag} --json {file}/x.json', 2),
     ('report {missing}', 1), ('report {folder}', 1), ('report {binary}', 1),
     ('report {bag} --robot-every 0', 2), ('report {bag} --robot-every 1e-9', 2),
-    ('report {bag} --robot-every nan', 2),
+    ('report {bag} --robot-every nan', 2), ('report {bag} --output {file}/report', 2),
+    ('report {bag} --output /proc/robotica-report', 2), ('bag repair {binary}', 1),
     ('bench kin --count 0', 2), ('bench kin --seed -1', 2), ('bench kin --seed 1e99', 2),
     ('bench arm --loop-duration -1', 2), ('bench recorder --rates 0', 2),
     ('bench warp', 2), ('bench tracking --plots {file}/plots', 2),
