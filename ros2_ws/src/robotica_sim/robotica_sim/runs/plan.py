@@ -73,8 +73,9 @@ def reference_path(scenario: Scenario) -> tuple[list[list[float]], list[float] |
             raise ValueError(f'about {count:.3g} points, more than {MAX_PATH_POINTS}: '
                              'sample it more coarsely (spacing or step) or make it shorter')
         samples = np.asarray(shape(**spec.args), dtype=float)
-    except (TypeError, ValueError, OverflowError, ZeroDivisionError) as err:
-        raise ScenarioError(f'{where}: path ({spec.shape}): {_one_line(err)}') from None
+    except (TypeError, ValueError, ArithmeticError, MemoryError) as err:
+        raise ScenarioError(f'{where}: path ({spec.shape}): {_one_line(err) or "too large"}') \
+            from None
     points = [[round(float(x), 9), round(float(y), 9)]   # [m], to 1 nm
               for x, y in samples[:, :2]]
     return points, [float(t) for t in samples[:, 2]] if samples.shape[1] == 3 else None
@@ -97,10 +98,11 @@ def _point_count(shape, args: dict) -> float:
     fine = args.get(name, inspect.signature(shape).parameters[name].default)
     if isinstance(fine, bool) or not isinstance(fine, (int, float)) or not 0.0 < fine < 1e300:
         raise ValueError(f'{name} must be a number > 0, got {fine!r}')
-    coarse = np.asarray(shape(**{**args, name: 1e12}), dtype=float)
+    coarse = np.asarray(shape(**{**args, name: np.finfo(float).max}), dtype=float)
     if name == 'step':
         return len(coarse) + float(coarse[-1, 2]) / fine
-    length = float(np.sum(np.hypot(*np.diff(coarse[:, :2], axis=0).T)))
+    with np.errstate(over='ignore', invalid='ignore'):   # a path of 1e300 m: inf, refused
+        length = float(np.sum(np.hypot(*np.diff(coarse[:, :2], axis=0).T)))
     return len(coarse) + length / (0.8 * fine)
 
 

@@ -337,3 +337,40 @@ def test_sigterm_ends_play_cleanly(tmp_path):
     _, rest = process.communicate(timeout=30)
     assert process.returncode == 130
     assert 'Traceback' not in rest and 'context is invalid' not in rest
+
+
+HOSTILE_VALUES = ['x', -1, 0, 1e308, -1e308, [], {}, None, True, 10**30, [1, 'a'], [[1, 2]],
+                  1e-300, '']
+
+
+def _leaves(data: dict, prefix: tuple = ()):
+    for key, value in data.items():
+        yield prefix + (key,)
+        if isinstance(value, dict):
+            yield from _leaves(value, prefix + (key,))
+
+
+@pytest.mark.parametrize('shipped', ['demo', 'ej8_2'])
+def test_every_key_of_a_shipped_scenario_refuses_hostile_values(tmp_path, shipped):
+    """Each key set to each hostile value: a valid scenario or one ScenarioError line."""
+    import warnings
+
+    from robotica_sim.runs.plan import plan_run
+    from robotica_sim.runs.scenario import load_scenario, resolve_scenario_path, ScenarioError
+    import yaml
+    base = yaml.safe_load(resolve_scenario_path(shipped).read_text())
+    scenario = tmp_path / 'hostile.yaml'
+    for path in _leaves(base):
+        for value in HOSTILE_VALUES:
+            data = yaml.safe_load(yaml.safe_dump(base))
+            parent = data
+            for key in path[:-1]:
+                parent = parent[key]
+            parent[path[-1]] = value
+            scenario.write_text(yaml.safe_dump(data))
+            with warnings.catch_warnings():
+                warnings.simplefilter('error')   # a warning would be a second line
+                try:
+                    plan_run(load_scenario(str(scenario)))
+                except ScenarioError as err:
+                    assert '\n' not in str(err), (path, value)
