@@ -13,6 +13,7 @@ import math
 
 import numpy as np
 import pytest
+from robotica_kin.bounds import MAX_TIME_JUMP
 from robotica_kin.mobile.ekf_localization import OdometryNoise
 from robotica_kin.mobile.odometry import ODOMETRY_METHODS
 from robotica_kin.mobile.odometry_fusion import (GYRO_WAIT_READINGS, metres_per_tick,
@@ -319,8 +320,8 @@ def test_the_queue_drops_its_oldest_measurement_when_full():
     odom = fusion(covariance=np.diag([0.0, 0.0, 1.0]))
     feed(odom, [(0, 0, 0.0)])
     for k in range(PENDING_LIMIT):
-        assert odom.add_heading(1.0 + k, 0.0, 1.0) == []
-    assert kinds(odom.add_heading(5000.0, 1.0, 1.0)) == ['queue_full']
+        assert odom.add_heading(1.0 + 1e-3 * k, 0.0, 1.0) == []
+    assert kinds(odom.add_heading(5.0, 1.0, 1.0)) == ['queue_full']
 
 
 def test_a_refused_measurement_is_reported():
@@ -389,3 +390,72 @@ def test_params_reject_bad_values(field, value):
 def test_constructor_rejects_bad_pose():
     with pytest.raises(ValueError, match='pose'):
         fusion(pose=(0.0, 0.0))
+
+
+# -- stamps and travels that jump ---------------------------------------------------------------
+
+def _straight(t0, n, dt=0.02, start_ticks=0, step=10):
+    """Return readings of a straight drive: ``step`` ticks per wheel each ``dt`` from ``t0``."""
+    return [(start_ticks + step * k, start_ticks + step * k, t0 + dt * k) for k in range(n)]
+
+
+def test_one_absurd_future_stamp_is_refused_and_changes_nothing():
+    # The issue's wedge: one reading stamped sec = 2**31 - 1 amid 50 Hz readings.
+    odom, reference = fusion(), fusion()
+    valid = _straight(1.0, 101)
+    feed(odom, valid[:50])
+    feed(reference, valid[:50])
+    odom.add_encoders(10_000, 10_000, TICKS, float(2 ** 31 - 1))
+    estimates, events = odom.update()
+    assert estimates == [] and kinds(events) == ['time_jumped']
+    answered = feed(odom, valid[50:])
+    assert [e.t for e in answered] == [t for _, _, t in valid[50:]]   # none ignored
+    feed(reference, valid[50:])
+    np.testing.assert_array_equal(odom.pose, reference.pose)
+    assert odom.pose[0] == pytest.approx(100 * 10 * C_M, rel=1e-12)
+
+
+@pytest.mark.parametrize('absurd', [-(2.0 ** 31), 1e15, 1.0 + MAX_TIME_JUMP * 1.01])
+def test_an_absurd_gyro_compass_or_fix_stamp_is_refused(absurd):
+    odom = fusion(heading_source='gyro', covariance=np.eye(3))
+    odom.add_gyro(0.0, 0.0, 0.0)
+    feed(odom, [(0, 0, 0.0)])
+    with pytest.raises(ValueError, match='from the encoder time'):
+        odom.add_gyro(absurd, 1.0, 0.0)
+    assert kinds(odom.add_heading(absurd, 0.0, 1.0)) == ['time_jumped']
+    assert kinds(odom.add_position(absurd, [0.0, 0.0], np.eye(2))) == ['time_jumped']
+    assert odom.add_gyro(0.02, 0.5, 0.0)   # the next valid sample is new and counts
+    feed(odom, [(10, 10, 0.02)])
+    assert odom.pose[2] == pytest.approx(0.5 * 0.02, rel=1e-12)
+
+
+def test_a_first_reading_with_an_absurd_stamp_is_left_after_three_agreeing_ones():
+    odom = fusion()
+    feed(odom, [(0, 0, 1e9)])
+    events = []
+    for reading in _straight(1.0, 3, start_ticks=0):
+        odom.add_encoders(reading[0], reading[1], TICKS, reading[2])
+        events += odom.update()[1]
+    assert kinds(events) == ['time_jumped', 'time_jumped', 'time_restarted']
+    assert odom.time == pytest.approx(1.04)
+    # The base is the first agreeing reading (t = 1.0, 0 ticks): 20 ticks by 1.04, 20 more.
+    feed(odom, [(40, 40, 1.06)])
+    assert odom.pose[0] == pytest.approx(40 * C_M, rel=1e-12)
+    assert odom.twist[0] == pytest.approx(20 * C_M / 0.02, rel=1e-9)
+
+
+def test_a_travel_faster_than_the_bound_is_refused_until_three_confirm_it():
+    odom = fusion()
+    feed(odom, _straight(0.0, 3))
+    x = odom.pose[0]
+    # 2**31 ticks of a 0.1 m wheel in 0.02 s: about 6.7e5 km/s.
+    odom.add_encoders(2 ** 31 - 1, 2 ** 31 - 1, TICKS, 0.06)
+    assert kinds(odom.update()[1]) == ['travel_refused']
+    feed(odom, [(40, 40, 0.08)])   # the next valid reading: 10 ticks per 0.02 s since 0.04
+    assert odom.pose[0] == pytest.approx(x + 20 * C_M, rel=1e-12)
+    events = []
+    for k in range(3):   # an encoder reset to 0: three readings in a row, then the new base
+        odom.add_encoders(10 ** 7 + k, 10 ** 7 + k, TICKS, 0.1 + 0.02 * k)
+        events += odom.update()[1]
+    assert kinds(events) == ['travel_refused', 'travel_refused', 'ticks_rebased']
+    assert odom.pose[0] == pytest.approx(x + 20 * C_M, rel=1e-12)

@@ -20,20 +20,23 @@ local): its points are interpolated as ros2_controllers' joint trajectory contro
 (quintic, cubic or linear Hermite,
 :class:`~robotica_ctrl.trajectory.sampled_trajectory.SampledTrajectory`).
 A trajectory stamped 0 starts at the time of the next joint state. Without a trajectory the
-controller holds the first measured position. A state with missing or non-finite joints is not
-answered (a simulator then brakes on its stale command) and the reason is logged.
+controller holds the first measured position. A state with missing or non-finite joints, or
+joints beyond the physical bounds of :mod:`robotica_kin.bounds`, is not answered (a simulator
+then brakes on its stale command) and the reason is logged; so is a state whose torques come
+out non-finite (the guard of :mod:`robotica_kin.ros.guarded` does not publish them).
 """
 import math
 
 import numpy as np
 from rclpy.experimental import EventsExecutor
-from rclpy.node import Node
 from robotica_ctrl.joint_control import (ComputedTorque, ComputedTorqueGains, DecoupledPID,
                                          JointControlLaw, JointReference, JointState, PIDGains)
 from robotica_ctrl.trajectory.sampled_trajectory import SampledTrajectory
+from robotica_kin.bounds import bounded_array, MAX_JOINT_POSITION, MAX_JOINT_VELOCITY
 from robotica_kin.ros.convert import seconds_to_stamp, stamp_to_seconds
 from robotica_kin.ros.dh_messages import declare_robot
 from robotica_kin.ros.entry_point import run_node
+from robotica_kin.ros.guarded import GuardedNode
 from robotica_kin.ros.parameters import declare
 from robotica_kin.ros.qos import (COMMAND_PUB_QOS, INPUT_QOS_OVERRIDES, LATCHED_QOS,
                                   STREAM_PUB_QOS, STREAM_SUB_QOS)
@@ -62,7 +65,7 @@ def _gain(values: list[float]) -> float | np.ndarray:
     return values[0] if len(values) == 1 else np.array(values)
 
 
-class JointControllerNode(Node):
+class JointControllerNode(GuardedNode):
     """ROS shell around a :class:`~robotica_ctrl.joint_control.JointControlLaw`."""
 
     def __init__(self) -> None:
@@ -167,6 +170,8 @@ class JointControllerNode(Node):
             self.get_logger().warn('non-finite joint state; not answered',
                                    throttle_duration_sec=1.0)
             return
+        bounded_array('joint positions', q, MAX_JOINT_POSITION)   # refused: not answered
+        bounded_array('joint velocities', qd, MAX_JOINT_VELOCITY)
         t = stamp_to_seconds(msg.header.stamp)
         if self._previous_time is not None and t < self._previous_time:
             self.get_logger().warn(f'time went back from {self._previous_time:.3f} s to '

@@ -20,12 +20,12 @@ The header stamp is ``start_time`` (0: the controller starts it when it receives
 from builtin_interfaces.msg import Duration
 import numpy as np
 from numpy.typing import NDArray
-from rclpy.node import Node
 from rclpy.parameter import Parameter
 from robotica_ctrl.trajectory import parab, pol3, pol5
 from robotica_ctrl.trajectory.sinusoid import sinusoid
 from robotica_kin.ros.convert import seconds_to_stamp
 from robotica_kin.ros.entry_point import run_node
+from robotica_kin.ros.guarded import GuardedNode
 from robotica_kin.ros.parameters import declare
 from robotica_kin.ros.qos import LATCHED_QOS
 from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
@@ -100,7 +100,7 @@ def trajectory_samples(generator: str, n: int, sample_period: float, *,
     return t, q, qd, qdd
 
 
-class JointTrajectoryPublisherNode(Node):
+class JointTrajectoryPublisherNode(GuardedNode):
     """Publish one generated trajectory, latched, and keep it available."""
 
     def __init__(self) -> None:

@@ -10,15 +10,15 @@ from nav_msgs.msg import Path
 import numpy as np
 from rcl_interfaces.msg import ParameterDescriptor
 from rclpy.exceptions import ParameterUninitializedException
-from rclpy.node import Node
 from rclpy.parameter import Parameter
 from robotica_kin.ros.convert import path_message
 from robotica_kin.ros.entry_point import run_node
+from robotica_kin.ros.guarded import GuardedNode
 from robotica_kin.ros.parameters import declare
 from robotica_kin.ros.qos import LATCHED_QOS
 
 
-class PathPublisherNode(Node):
+class PathPublisherNode(GuardedNode):
     """Publish one path given as parameters."""
 
     def __init__(self) -> None:

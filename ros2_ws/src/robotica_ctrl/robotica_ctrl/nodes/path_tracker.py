@@ -36,12 +36,12 @@ from nav_msgs.msg import Odometry, Path
 import numpy as np
 from rcl_interfaces.msg import SetParametersResult
 from rclpy.experimental import EventsExecutor
-from rclpy.node import Node
 from robotica_ctrl.mobile.path import PolylinePath
 from robotica_ctrl.mobile.tracker_base import TrackingLaw
 from robotica_ctrl.mobile.tracking_laws import LAW_PARAMETERS, make_law, steering_angle
 from robotica_kin.ros.convert import path_points, pose2d_from_odometry, stamp_to_seconds
 from robotica_kin.ros.entry_point import run_node
+from robotica_kin.ros.guarded import GuardedNode
 from robotica_kin.ros.parameters import declare
 from robotica_kin.ros.qos import (COMMAND_PUB_QOS, INPUT_QOS_OVERRIDES, LATCHED_QOS,
                                   STREAM_PUB_QOS, STREAM_SUB_QOS)
@@ -51,7 +51,7 @@ COMMAND_TYPES = ('twist', 'steering')
 POSE_SOURCES = {'odom': 'odom', 'ground_truth': 'ground_truth/odom'}
 
 
-class PathTrackerNode(Node):
+class PathTrackerNode(GuardedNode):
     """ROS shell around the tracking laws of :mod:`robotica_ctrl.mobile.tracking_laws`."""
 
     def __init__(self) -> None:
@@ -201,6 +201,10 @@ class PathTrackerNode(Node):
                 self.get_logger().warn(text)
             else:
                 self.get_logger().info(text)
+
+    def on_callback_error(self, source: str) -> None:
+        """Command a stop: the guard dropped an input (or a non-finite command) on ``source``."""
+        self._publish_command(0.0, 0.0)
 
     def _stop(self, reason: str) -> None:
         self._report(reason, reason)

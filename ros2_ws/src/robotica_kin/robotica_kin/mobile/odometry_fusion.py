@@ -20,7 +20,14 @@ one older than the first encoder reading (replayed history) is dropped. After
 ``max_rejections`` rejections in a row of one sensor the filter is re-opened: the innovation
 squared is added to the pose variances and the measurement applied again.
 
-Times [s] come in as arguments (a message's stamp); the class never reads a clock. What a node
+Times [s] come in as arguments (a message's stamp); the class never reads a clock. A stamp more
+than :data:`~robotica_kin.bounds.MAX_TIME_JUMP` from the latest encoder reading's is refused
+(``time_jumped``) and changes nothing, so that one absurd stamp cannot wedge the estimate; only
+:data:`JUMP_CONFIRMATIONS` encoder readings in a row that agree with each other move the time
+base there (``time_restarted``: a restarted clock, or a first reading that was the absurd one).
+Likewise a travel faster than :data:`~robotica_kin.bounds.MAX_SPEED` is refused
+(``travel_refused``) until :data:`JUMP_CONFIRMATIONS` readings in a row make the new counts the
+base (``ticks_rebased``: an encoder that was reset). What a node
 would log comes back as :class:`FusionEvent` values. Everything is in REP-103 (θ from the x axis,
 counter-clockwise), SI units; the pose lives in ``odom``, the twist in ``base_link`` (REP-105).
 """
@@ -33,6 +40,7 @@ from typing import NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from robotica_kin.bounds import MAX_SPEED, MAX_TIME_JUMP
 from robotica_kin.finite import finite_real
 from robotica_kin.mobile.ekf_localization import (EkfLocalization, increment_between_poses,
                                                   OdometryNoise)
@@ -40,8 +48,8 @@ from robotica_kin.mobile.odometry import odometry_increment, ODOMETRY_METHODS
 from robotica_kin.types import Pose2D
 
 __all__ = ['EVENT_KINDS', 'FusionEvent', 'GYRO_WAIT_READINGS', 'HEADING_SOURCES',
-           'OdometryEstimate', 'OdometryFusion', 'OdometryFusionParams', 'PENDING_LIMIT',
-           'SENSORS', 'STAMP_TOLERANCE', 'metres_per_tick']
+           'JUMP_CONFIRMATIONS', 'OdometryEstimate', 'OdometryFusion', 'OdometryFusionParams',
+           'PENDING_LIMIT', 'SENSORS', 'STAMP_TOLERANCE', 'metres_per_tick']
 
 HEADING_SOURCES = ('encoders', 'gyro')
 """Where the heading increments come from (:attr:`OdometryFusionParams.heading_source`)."""
@@ -50,12 +58,14 @@ SENSORS = ('position', 'heading')
 """The corrections: a position fix (GPS/DGPS, ENU) and a heading (compass)."""
 
 EVENT_KINDS = ('waiting_for_gyro', 'went_on_without_samples', 'stale_dropped', 'time_went_back',
-               'queue_full', 'invalid_heading', 'refused', 'rejected', 'reopened')
+               'queue_full', 'invalid_heading', 'refused', 'rejected', 'reopened', 'time_jumped',
+               'time_restarted', 'travel_refused', 'ticks_rebased')
 """Kinds of :class:`FusionEvent`, described there."""
 
 PENDING_LIMIT = 1000        # measurements waiting for the estimate to reach their time
 GYRO_WAIT_READINGS = 25     # encoder readings that wait for a late gyro/compass (0.5 s at 50 Hz)
 STAMP_TOLERANCE = 1e-9      # [s] stamps closer than this are the same time
+JUMP_CONFIRMATIONS = 3      # agreeing encoder readings in a row that move the time or tick base
 
 
 def metres_per_tick(wheel_radius: float, ticks_per_revolution: int) -> float:
@@ -171,7 +181,17 @@ class FusionEvent:
     * ``rejected``: the innovation gate rejected a ``sensor`` measurement (``count``: gate
       rejections since the start);
     * ``reopened``: after ``max_rejections`` rejections of ``sensor`` in a row the covariance
-      was inflated and the measurement tried again (``applied``: whether it then passed).
+      was inflated and the measurement tried again (``applied``: whether it then passed);
+    * ``time_jumped``: an input of time ``t`` (an encoder reading, or a ``sensor``
+      measurement) more than ``MAX_TIME_JUMP`` from the encoder time ``t_previous`` was
+      refused;
+    * ``time_restarted``: :data:`JUMP_CONFIRMATIONS` agreeing encoder readings in a row so far
+      from ``t_previous`` restarted the time base at ``t`` (the pose is kept, the travel in
+      between is lost);
+    * ``travel_refused``: a reading of time ``t`` whose travel since the previous one is faster
+      than ``MAX_SPEED`` was ignored;
+    * ``ticks_rebased``: the last of :data:`JUMP_CONFIRMATIONS` such readings in a row became
+      the new tick base at ``t`` (its travel is not applied).
 
     ``sensor`` is one of :data:`SENSORS`; times [s].
     """
@@ -286,6 +306,9 @@ class OdometryFusion:
     _pending: list[_Measurement]
     _streaks: dict[str, int]
     _rejections: int
+    _jumped: list[_Reading]
+    _untravelled: int
+    _events: list[FusionEvent]
 
     def __init__(self, params: OdometryFusionParams, initial_pose: ArrayLike,
                  initial_covariance: ArrayLike) -> None:
@@ -326,6 +349,9 @@ class OdometryFusion:
         self._pending = []
         self._streaks = {}
         self._rejections = 0
+        self._jumped = []               # encoder readings in a row refused for their time
+        self._untravelled = 0           # readings in a row refused for their travel
+        self._events = []               # what add_encoders did, for the next update()
 
     # -- inputs ------------------------------------------------------------------------------
     def add_encoders(self, left_ticks: int, right_ticks: int, ticks_per_revolution: int,
@@ -337,6 +363,10 @@ class OdometryFusion:
         (increasing forwards) and ``ticks_per_revolution`` their counts per wheel revolution.
         A reading of the same time as the last one queued (within :data:`STAMP_TOLERANCE`)
         replaces it: a state sent again is answered once.
+
+        A reading more than ``MAX_TIME_JUMP`` from the latest one is refused (a
+        ``time_jumped`` event at the next :meth:`update`) unless it is the last of
+        :data:`JUMP_CONFIRMATIONS` agreeing ones in a row: these restart the time base.
 
         Raises
         ------
@@ -350,6 +380,20 @@ class OdometryFusion:
                 raise ValueError(f'{name} must be an integer, got {count!r}')
         reading = _Reading(left_ticks, right_ticks, finite_real('t', t),
                            metres_per_tick(self._params.wheel_radius, ticks_per_revolution))
+        reference = self._encoder_time()
+        if reference is not None and abs(reading.t - reference) > MAX_TIME_JUMP:
+            jumped = self._jumped
+            agrees = jumped and 0.0 < reading.t - jumped[-1].t <= MAX_TIME_JUMP
+            self._jumped = jumped + [reading] if agrees else [reading]
+            if len(self._jumped) < JUMP_CONFIRMATIONS:
+                self._events.append(FusionEvent('time_jumped', t=reading.t,
+                                                t_previous=reference))
+                return
+            self._events.append(FusionEvent('time_restarted', t=reading.t,
+                                            t_previous=reference))
+            self._readings, self._jumped, self._last = self._jumped, [], None
+            return
+        self._jumped = []
         if self._readings and abs(self._readings[-1].t - reading.t) <= STAMP_TOLERANCE:
             self._readings[-1] = reading
         else:
@@ -376,12 +420,17 @@ class OdometryFusion:
         Raises
         ------
         ValueError
-            If ``t``, ``rate`` or ``variance`` is not finite; the sample is ignored.
+            If ``t``, ``rate`` or ``variance`` is not finite, or ``t`` is more than
+            ``MAX_TIME_JUMP`` from the encoder time; the sample is ignored.
 
         """
         if not all(math.isfinite(v) for v in (t, rate, variance)):
             raise ValueError(f'gyro sample must be finite, got t = {t!r} s, rate = {rate!r} '
                              f'rad/s, variance = {variance!r}')
+        reference = self._encoder_time()
+        if reference is not None and abs(t - reference) > MAX_TIME_JUMP:
+            raise ValueError(f'gyro sample of t = {t!r} s is more than {MAX_TIME_JUMP} s from '
+                             f'the encoder time {reference!r} s')
         if self._newest_gyro_t is not None and t <= self._newest_gyro_t + STAMP_TOLERANCE:
             return False
         self._newest_gyro_t = t
@@ -448,6 +497,9 @@ class OdometryFusion:
 
         """
         t = finite_real('t', t)
+        reference = self._jumped_from(t)
+        if reference is not None:
+            return [FusionEvent('time_jumped', t=t, t_previous=reference, sensor='heading')]
         self._newest_heading_t = t if self._newest_heading_t is None else max(
             t, self._newest_heading_t)
         if not (math.isfinite(yaw) and math.isfinite(variance) and variance > 0.0):
@@ -479,7 +531,7 @@ class OdometryFusion:
 
         """
         estimates: list[OdometryEstimate] = []
-        events: list[FusionEvent] = []
+        events, self._events = self._events, []
         gyro = self._params.heading_source == 'gyro'
         while self._readings:
             t = self._readings[0].t
@@ -507,8 +559,15 @@ class OdometryFusion:
         if self._last is None:
             self._last = reading
             self._first_t = self._gyro_t = t
-            # Replayed history from before the estimate starts (a restarted node): dropped.
-            self._gyro_samples = [g for g in self._gyro_samples if g[0] > t + STAMP_TOLERANCE]
+            # Replayed history from before the estimate starts (a restarted node): dropped;
+            # and what is more than MAX_TIME_JUMP after it (a clock that jumped) too.
+            self._gyro_samples = [g for g in self._gyro_samples
+                                  if t + STAMP_TOLERANCE < g[0] <= t + MAX_TIME_JUMP]
+            self._pending = [p for p in self._pending if p.t <= t + MAX_TIME_JUMP]
+            if self._newest_gyro_t is not None and self._newest_gyro_t > t + MAX_TIME_JUMP:
+                self._newest_gyro_t = max((g[0] for g in self._gyro_samples), default=None)
+            if self._newest_heading_t is not None and self._newest_heading_t > t + MAX_TIME_JUMP:
+                self._newest_heading_t = None
             stale = [p for p in self._pending if p.t < t - STAMP_TOLERANCE]
             if stale:
                 self._pending = [p for p in self._pending if p.t >= t - STAMP_TOLERANCE]
@@ -524,6 +583,15 @@ class OdometryFusion:
         params = self._params
         left = reading.metres_per_tick * (reading.left_ticks - self._last.left_ticks)
         right = reading.metres_per_tick * (reading.right_ticks - self._last.right_ticks)
+        if max(abs(left), abs(right)) > MAX_SPEED * (t - t0):
+            self._untravelled += 1
+            if self._untravelled < JUMP_CONFIRMATIONS:
+                events.append(FusionEvent('travel_refused', t=t, t_previous=t0))
+                return False
+            events.append(FusionEvent('ticks_rebased', t=t, t_previous=t0))
+            self._untravelled, self._last = 0, reading
+            return True
+        self._untravelled = 0
         self._last = reading
         heading_variance = None
         if params.heading_source == 'gyro':
@@ -544,6 +612,18 @@ class OdometryFusion:
                        (right - left) / params.wheel_separation / (t - t0))
         self._apply_due(t, events)
         return True
+
+    def _encoder_time(self) -> float | None:
+        """Return the time [s] of the latest encoder reading accepted (queued or applied)."""
+        if self._readings:
+            return self._readings[-1].t
+        return None if self._last is None else self._last.t
+
+    def _jumped_from(self, t: float) -> float | None:
+        """Return the encoder time [s] if ``t`` [s] is more than ``MAX_TIME_JUMP`` from it."""
+        reference = self._encoder_time()
+        return reference if reference is not None and abs(t - reference) > MAX_TIME_JUMP \
+            else None
 
     def _gyro_turn(self, t: float) -> tuple[float, float]:
         """
@@ -573,6 +653,10 @@ class OdometryFusion:
         """
         events: list[FusionEvent] = []
         t = measurement.t
+        reference = self._jumped_from(t)
+        if reference is not None:
+            return [FusionEvent('time_jumped', t=t, t_previous=reference,
+                                sensor=measurement.sensor)]
         if self._first_t is not None and t < self._first_t - STAMP_TOLERANCE:
             return events
         if self._last is not None and t <= self._last.t + STAMP_TOLERANCE:

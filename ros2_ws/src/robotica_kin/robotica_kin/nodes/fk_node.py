@@ -16,11 +16,11 @@ A joint-state message lacking a joint or with a NaN position is skipped with a w
 import math
 
 from geometry_msgs.msg import PoseArray, PoseStamped
-from rclpy.node import Node
 from robotica_kin.forward_kinematics import fkine, link_frames
 from robotica_kin.ros.dh_messages import (declare_robot, dh_table_message, pose_message,
                                           request_robot)
 from robotica_kin.ros.entry_point import run_node
+from robotica_kin.ros.guarded import GuardedNode
 from robotica_kin.ros.parameters import declare
 from robotica_kin.ros.qos import LATCHED_QOS, STREAM_PUB_QOS, STREAM_SUB_QOS
 from robotica_msgs.msg import DHTable
@@ -30,7 +30,7 @@ from sensor_msgs.msg import JointState
 WARN_PERIOD = 5.0   # [s] between repeated warnings about bad joint states
 
 
-class ForwardKinematicsNode(Node):
+class ForwardKinematicsNode(GuardedNode):
     """ROS shell around :func:`robotica_kin.forward_kinematics.fkine` and ``link_frames``."""
 
     def __init__(self) -> None:

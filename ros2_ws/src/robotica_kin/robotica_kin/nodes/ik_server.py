@@ -13,10 +13,10 @@ a request.
 import math
 
 from numpy.linalg import LinAlgError
-from rclpy.node import Node
 from robotica_kin.ik import ikine_solve
 from robotica_kin.ros.dh_messages import declare_robot, pose_matrix, request_robot
 from robotica_kin.ros.entry_point import run_node
+from robotica_kin.ros.guarded import GuardedNode
 from robotica_msgs.srv import InverseKinematics
 
 DEFAULT_STOL = 1e-6      # pose-error tolerance used when a request gives 0
@@ -35,7 +35,7 @@ def _solver_options(request: InverseKinematics.Request) -> dict:
             'mask': list(request.mask) or None}
 
 
-class InverseKinematicsServer(Node):
+class InverseKinematicsServer(GuardedNode):
     """ROS shell around :func:`robotica_kin.ik.ikine_solve`."""
 
     def __init__(self) -> None:

@@ -2,14 +2,17 @@
 The ``main()`` of every robotica node: init, build, spin, shut down cleanly (Jazzy).
 
 A node whose parameters are invalid raises ``ValueError`` (or rclpy refuses an override out of
-its range or of the wrong type) while it is built; that is logged as
-one clear line and the process exits with code 2, without a traceback. Ctrl-C (SIGINT) and
-SIGTERM end the process with code 0 (STYLE.md §5, shutdown).
+its range or of the wrong type) while it is built; that is logged as one clear line and the
+process exits with code 2, without a traceback. Only the construction counts: an error inside
+a callback is the guard's (:mod:`robotica_kin.ros.guarded`), which drops the message and keeps
+the node running. Ctrl-C (SIGINT) and SIGTERM end the process with code 0 (STYLE.md §5,
+shutdown).
 """
 import sys
 from typing import Callable, Optional
 
 import rclpy
+from rclpy._rclpy_pybind11 import RCLError
 from rclpy.exceptions import ParameterException
 from rclpy.executors import Executor, ExternalShutdownException, SingleThreadedExecutor
 from rclpy.node import Node
@@ -39,16 +42,21 @@ def run_node(factory: Callable[[], Node], args: Optional[list[str]] = None,
     code = 0
     node = None
     try:
-        node = factory()
-        executor = executor_factory()
-        executor.add_node(node)
-        code = run(node, executor)
-    except (ValueError, ParameterException) as err:
-        name = getattr(factory, '__name__', 'node')
-        rclpy.logging.get_logger(name).error(f'invalid configuration: {err}')
-        code = 2
+        try:
+            node = factory()
+        except (ValueError, ParameterException) as err:
+            name = getattr(factory, '__name__', 'node')
+            rclpy.logging.get_logger(name).error(f'invalid configuration: {err}')
+            code = 2
+        else:
+            executor = executor_factory()
+            executor.add_node(node)
+            code = run(node, executor)
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
+    except RCLError:   # a call racing the shutdown of SIGINT/SIGTERM: not an error then
+        if node is None or node.context.ok():
+            raise
     finally:
         if node is not None:
             node.destroy_node()

@@ -12,13 +12,15 @@ joint in ``joint_names`` order, as ros2_controllers' effort controllers take the
 with the simulated time), ``/clock`` and ``~/status``. Pacing and the end of the run:
 :class:`~robotica_sim.nodes.stepped_simulator.SteppedSimulatorNode`.
 
-Safe stop: while no valid command newer than ``cmd_timeout`` exists (none yet, a stale one, or a
-refused one: wrong size, NaN), the joint brakes hold the arm (velocities zero, positions held);
-every change of that condition is logged.
+Safe stop: while no valid command newer than ``cmd_timeout`` exists (none yet, a stale one, or
+a refused one: wrong size, not finite, beyond ``robotica_kin.bounds.MAX_FORCE_TORQUE``), the
+joint brakes hold the arm (velocities zero, positions held); every change of that condition is
+logged.
 """
 import numpy as np
 from rclpy.experimental import EventsExecutor
 from rclpy.parameter import Parameter
+from robotica_kin.bounds import bounded_array, MAX_FORCE_TORQUE
 from robotica_kin.dynamics import DEFAULT_GRAVITY
 from robotica_kin.ros.convert import seconds_to_stamp
 from robotica_kin.ros.dh_messages import declare_robot
@@ -104,14 +106,15 @@ class ArmSimulatorNode(SteppedSimulatorNode):
     # -- callbacks: store and convert only ------------------------------------------------
     def _on_torques(self, msg: Float64MultiArray) -> None:
         self.note_answer()
-        torque = np.asarray(msg.data, dtype=np.float64)
-        if torque.shape != (self._robot.n,) or not np.isfinite(torque).all():
-            self._torque = None
-            self.get_logger().warn(f'refused command: need {self._robot.n} finite torques, got '
-                                   f'{list(msg.data)}; braking', throttle_duration_sec=1.0)
-            return
+        torque = bounded_array('torques', msg.data, MAX_FORCE_TORQUE)
+        if torque.shape != (self._robot.n,):
+            raise ValueError(f'need {self._robot.n} torques, got {torque.size}')
         self._torque = torque
         self._torque_time = self.sim_time
+
+    def on_callback_error(self, source: str) -> None:
+        """Brake: a refused command (wrong size, not finite, beyond the bounds) holds the arm."""
+        self._torque = None
 
     # -- the plant ------------------------------------------------------------------------
     def publish_plant(self, t: float) -> None:

@@ -19,9 +19,9 @@ import math
 
 from nav_msgs.msg import Odometry
 from rclpy.experimental import EventsExecutor
-from rclpy.node import Node
 from robotica_kin.ros.convert import quaternion_to_yaw, yaw_to_quaternion
 from robotica_kin.ros.entry_point import run_node
+from robotica_kin.ros.guarded import GuardedNode
 from robotica_kin.ros.parameters import declare
 from robotica_kin.ros.qos import STREAM_PUB_QOS, STREAM_REPLAY_SUB_QOS
 from robotica_sim.sensors.compass import CompassModel, CompassParams, heading_noise_stddev
@@ -30,7 +30,7 @@ from sensor_msgs.msg import Imu, MagneticField
 _DEG = math.pi / 180.0
 
 
-class CompassEmulatorNode(Node):
+class CompassEmulatorNode(GuardedNode):
     """Publish the magnetometer reading and compass heading of the true yaw."""
 
     def __init__(self) -> None:

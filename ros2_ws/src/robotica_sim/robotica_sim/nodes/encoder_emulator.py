@@ -13,8 +13,9 @@ import math
 
 import numpy as np
 from rclpy.experimental import EventsExecutor
-from rclpy.node import Node
+from robotica_kin.bounds import bounded_array, MAX_JOINT_POSITION
 from robotica_kin.ros.entry_point import run_node
+from robotica_kin.ros.guarded import GuardedNode
 from robotica_kin.ros.parameters import declare
 from robotica_kin.ros.qos import STREAM_PUB_QOS, STREAM_REPLAY_SUB_QOS
 from robotica_msgs.msg import WheelEncoders
@@ -22,7 +23,7 @@ from robotica_sim.sensors.encoder import EncoderModel, EncoderParams
 from sensor_msgs.msg import JointState
 
 
-class EncoderEmulatorNode(Node):
+class EncoderEmulatorNode(GuardedNode):
     """Publish the encoder counts of the wheels named by parameters."""
 
     def __init__(self) -> None:
@@ -69,6 +70,7 @@ class EncoderEmulatorNode(Node):
             self.get_logger().warn('non-finite wheel angle; reading skipped',
                                    throttle_duration_sec=5.0)
             return
+        bounded_array('wheel angles', angles, MAX_JOINT_POSITION)   # refused: the guard logs
         left, right = (counter.ticks(a) for counter, a in zip(self._counters, angles))
         out = WheelEncoders(left_ticks=left, right_ticks=right,
                             ticks_per_revolution=self._ticks_per_rev)

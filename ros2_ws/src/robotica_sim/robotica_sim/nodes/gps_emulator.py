@@ -17,17 +17,18 @@ import math
 from nav_msgs.msg import Odometry
 import numpy as np
 from rclpy.experimental import EventsExecutor
-from rclpy.node import Node
+from robotica_kin.bounds import StampGate
 from robotica_kin.geodetic import GeodeticOrigin
 from robotica_kin.ros.convert import seconds_to_stamp, stamp_to_seconds
 from robotica_kin.ros.entry_point import run_node
+from robotica_kin.ros.guarded import GuardedNode
 from robotica_kin.ros.parameters import declare
 from robotica_kin.ros.qos import STREAM_PUB_QOS, STREAM_REPLAY_SUB_QOS
 from robotica_sim.sensors.gps import gps_preset, GPS_PRESETS, GpsFix, GpsModel
 from sensor_msgs.msg import NavSatFix, NavSatStatus
 
 
-class GpsEmulatorNode(Node):
+class GpsEmulatorNode(GuardedNode):
     """Publish GPS fixes of the ground-truth position."""
 
     def __init__(self) -> None:
@@ -51,6 +52,7 @@ class GpsEmulatorNode(Node):
         self._frame = declare(self, 'frame_id', 'gps_link', 'frame_id of the fixes',
                               read_only=True)
         self._pending: deque[GpsFix] = deque()
+        self._stamps = StampGate()
         self._pub = self.create_publisher(NavSatFix, 'gps/fix', STREAM_PUB_QOS)
         self.create_subscription(Odometry, 'ground_truth/odom', self._on_truth,
                                  STREAM_REPLAY_SUB_QOS)
@@ -60,6 +62,9 @@ class GpsEmulatorNode(Node):
 
     def _on_truth(self, msg: Odometry) -> None:
         t = stamp_to_seconds(msg.header.stamp)
+        if self._stamps.check(t) == 'restart':   # refused (raises) when it jumps
+            self._model.reset()
+            self._pending.clear()
         position = msg.pose.pose.position
         enu = (position.x, position.y, position.z + self._antenna_height)
         if not all(math.isfinite(v) for v in enu):

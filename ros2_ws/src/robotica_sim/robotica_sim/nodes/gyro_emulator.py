@@ -14,16 +14,17 @@ and is left to the estimator); orientation and linear acceleration are marked "n
 from nav_msgs.msg import Odometry
 import numpy as np
 from rclpy.experimental import EventsExecutor
-from rclpy.node import Node
+from robotica_kin.bounds import StampGate
 from robotica_kin.ros.convert import stamp_to_seconds
 from robotica_kin.ros.entry_point import run_node
+from robotica_kin.ros.guarded import GuardedNode
 from robotica_kin.ros.parameters import declare
 from robotica_kin.ros.qos import STREAM_PUB_QOS, STREAM_REPLAY_SUB_QOS
 from robotica_sim.sensors.gyro import GYRO_PRESETS, GyroModel
 from sensor_msgs.msg import Imu
 
 
-class GyroEmulatorNode(Node):
+class GyroEmulatorNode(GuardedNode):
     """Publish the three gyro axes' readings of the true body rates."""
 
     def __init__(self) -> None:
@@ -39,6 +40,7 @@ class GyroEmulatorNode(Node):
         self._frame = declare(self, 'frame_id', 'base_link', 'frame_id of the readings',
                               read_only=True)
         self._last_t: float | None = None
+        self._stamps = StampGate()
         self._pub = self.create_publisher(Imu, 'imu/data', STREAM_PUB_QOS)
         self.create_subscription(Odometry, 'ground_truth/odom', self._on_truth,
                                  STREAM_REPLAY_SUB_QOS)
@@ -46,6 +48,8 @@ class GyroEmulatorNode(Node):
 
     def _on_truth(self, msg: Odometry) -> None:
         t = stamp_to_seconds(msg.header.stamp)
+        if self._stamps.check(t) == 'restart':   # refused (raises) when it jumps
+            self._last_t = None
         rates = msg.twist.twist.angular
         true_rates = (rates.x, rates.y, rates.z)
         if not np.isfinite(true_rates).all():

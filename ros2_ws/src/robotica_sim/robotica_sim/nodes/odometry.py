@@ -38,7 +38,7 @@ import math
 from nav_msgs.msg import Odometry
 import numpy as np
 from rclpy.experimental import EventsExecutor
-from rclpy.node import Node
+from robotica_kin.bounds import bounded, MAX_LATITUDE, MAX_LONGITUDE, MAX_SPEED, MAX_TIME_JUMP
 from robotica_kin.geodetic import GeodeticOrigin
 from robotica_kin.mobile.ekf_localization import OdometryNoise
 from robotica_kin.mobile.odometry import ODOMETRY_METHODS
@@ -46,6 +46,7 @@ from robotica_kin.mobile.odometry_fusion import (FusionEvent, HEADING_SOURCES, O
                                                  OdometryFusion, OdometryFusionParams)
 from robotica_kin.ros.convert import odometry_message, quaternion_to_yaw, stamp_to_seconds
 from robotica_kin.ros.entry_point import run_node
+from robotica_kin.ros.guarded import GuardedNode
 from robotica_kin.ros.parameters import declare
 from robotica_kin.ros.qos import (INPUT_QOS_OVERRIDES, STREAM_PUB_QOS, STREAM_REPLAY_SUB_QOS,
                                   STREAM_SUB_QOS)
@@ -55,7 +56,7 @@ from sensor_msgs.msg import Imu, NavSatFix, NavSatStatus
 SENSOR_NAMES = {'position': 'GPS fix', 'heading': 'compass heading'}   # in the log
 
 
-class OdometryNode(Node):
+class OdometryNode(GuardedNode):
     """Integrate encoder ticks (and gyro rates) into a pose estimate; fuse GPS and compass."""
 
     def __init__(self) -> None:
@@ -150,8 +151,8 @@ class OdometryNode(Node):
             new = self._fusion.add_gyro(stamp_to_seconds(msg.header.stamp),
                                         msg.angular_velocity.z,
                                         msg.angular_velocity_covariance[8])
-        except ValueError:
-            self.get_logger().warn('non-finite gyro reading; ignored', throttle_duration_sec=5.0)
+        except ValueError as err:
+            self.get_logger().warn(f'gyro reading ignored: {err}', throttle_duration_sec=5.0)
             return
         if new:
             self._update()
@@ -161,9 +162,8 @@ class OdometryNode(Node):
             self._fusion.add_encoders(msg.left_ticks, msg.right_ticks,
                                       msg.ticks_per_revolution,
                                       stamp_to_seconds(msg.header.stamp))
-        except ValueError:   # a message's counts and stamp are integers: the resolution is 0
-            self.get_logger().warn('wheel_encoders with ticks_per_revolution 0; ignored',
-                                   throttle_duration_sec=5.0)
+        except ValueError as err:   # counts and stamp are integers: the resolution is 0
+            self.get_logger().warn(f'wheel_encoders ignored: {err}', throttle_duration_sec=5.0)
             return
         self._update()
 
@@ -179,6 +179,8 @@ class OdometryNode(Node):
             self.get_logger().warn('GPS fix without covariance; ignored',
                                    throttle_duration_sec=5.0)
             return
+        bounded('latitude', msg.latitude, MAX_LATITUDE)   # refused: the guard logs it
+        bounded('longitude', msg.longitude, MAX_LONGITUDE)
         east, north, _ = self._origin.geodetic_to_enu(*values)
         self._report(self._fusion.add_position(stamp_to_seconds(msg.header.stamp),
                                                [east, north], covariance))
@@ -222,6 +224,19 @@ class OdometryNode(Node):
                 case 'invalid_heading':
                     log.warn('compass heading without a finite, positive variance; ignored',
                              throttle_duration_sec=5.0)
+                case 'time_jumped':
+                    log.warn(f'{name or "encoder reading"} of t = {event.t} s refused: more than '
+                             f'{MAX_TIME_JUMP} s from the encoder time {event.t_previous} s',
+                             throttle_duration_sec=5.0)
+                case 'time_restarted':
+                    log.warn(f'encoder time jumped from {event.t_previous} s to {event.t} s in '
+                             'agreeing readings: time base restarted there')
+                case 'travel_refused':
+                    log.warn(f'encoder reading of t = {event.t} s refused: travel faster than '
+                             f'{MAX_SPEED} m/s', throttle_duration_sec=5.0)
+                case 'ticks_rebased':
+                    log.warn(f'encoder counts jumped at t = {event.t} s in readings in a row: '
+                             'taken as the new tick base')
                 case 'refused':
                     log.warn(f'{name} refused: {event.error}', throttle_duration_sec=5.0)
                 case 'rejected':

@@ -29,10 +29,10 @@ import time
 from rclpy.clock import Clock, ClockType
 from rclpy.event_handler import QoSMessageLostInfo, SubscriptionEventCallbacks
 from rclpy.experimental import EventsExecutor
-from rclpy.node import Node
 from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
 from rclpy.signals import SignalHandlerOptions
 from robotica_kin.ros.entry_point import run_node
+from robotica_kin.ros.guarded import GuardedNode
 from robotica_kin.ros.parameters import declare
 from robotica_sim.bags.metadata import qos_to_dict
 from robotica_sim.bags.run_record import PUBLISHERS_KEY
@@ -48,7 +48,7 @@ DRAIN_LIMIT = 5.0    # [s] wall clock, the longest drain
 UNKNOWN_NODE = '_NODE_NAME_UNKNOWN_'   # rmw's name of a publisher whose node is not known yet
 
 
-class RecorderNode(Node):
+class RecorderNode(GuardedNode):
     """Record topics into one rosbag2 directory."""
 
     def __init__(self) -> None:
@@ -97,7 +97,7 @@ class RecorderNode(Node):
         for f in files:
             shutil.copy(f, Path(output) / Path(f).name)
         self._lost: dict[str, int] = {}
-        self._publishers: dict[str, set[str]] = {}   # topic -> publishing nodes seen
+        self._publishing_nodes: dict[str, set[str]] = {}   # topic -> publishing nodes seen
         self._unresolved: set[str] = set()   # topics with a publisher whose node is unknown yet
         # Wall-clock timer: the chunk in progress reaches the disk even when no message comes.
         wall = Clock(clock_type=ClockType.STEADY_TIME)
@@ -169,7 +169,7 @@ class RecorderNode(Node):
 
     def _note_publishers(self, topic: str, publishers: list) -> None:
         """Store the nodes publishing ``topic`` in the bag (when new ones are seen)."""
-        seen = self._publishers.setdefault(topic, set())
+        seen = self._publishing_nodes.setdefault(topic, set())
         if any(p.node_name == UNKNOWN_NODE for p in publishers):
             self._unresolved.add(topic)
         else:
@@ -179,7 +179,7 @@ class RecorderNode(Node):
         if not names <= seen:
             seen |= names
             self._writer.set_custom_data(PUBLISHERS_KEY, yaml.safe_dump(
-                {t: sorted(n) for t, n in sorted(self._publishers.items())}))
+                {t: sorted(n) for t, n in sorted(self._publishing_nodes.items())}))
 
     def _receive_time(self) -> int:
         """Return the receive time [ns]: simulated with use_sim_time, else the system clock."""

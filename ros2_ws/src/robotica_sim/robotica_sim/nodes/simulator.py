@@ -12,7 +12,8 @@ ground truth ``ground_truth/odom`` (nav_msgs/Odometry, pose in ``world_frame_id`
 Service ``~/start`` (std_srvs/Trigger) starts the run when ``autostart`` is false. Pacing
 (``realtime`` or ``lockstep``) and the end of the run are those of
 :class:`~robotica_sim.nodes.stepped_simulator.SteppedSimulatorNode`. A command older than
-``cmd_timeout`` stops the vehicle, and the node logs it; a non-finite command is refused.
+``cmd_timeout`` stops the vehicle, and the node logs it; a command that is not finite or beyond
+the physical bounds (:mod:`robotica_kin.bounds`) is refused, logged, and stops it at once.
 """
 import math
 
@@ -96,7 +97,8 @@ class SimulatorNode(SteppedSimulatorNode):
                     'Right odometry wheel joint name (drive or rear axle)', read_only=True)]
         self._sim = VehicleSimulation(vehicle_kinematics(vehicle_type, geometry), params, pose)
         self._truth_pub = self.create_publisher(Odometry, 'ground_truth/odom', STREAM_PUB_QOS)
-        self._joints_pub = self.create_publisher(JointState, 'joint_states', STREAM_PUB_QOS)
+        self._joints_pub = self.create_publisher(JointState, 'joint_states', STREAM_PUB_QOS,
+                                                 allow_nan=('velocity',))
         if self._steered:
             self.create_subscription(VehicleCommand, 'vehicle_command', self._on_vehicle_command,
                                      COMMAND_QOS)
@@ -109,12 +111,11 @@ class SimulatorNode(SteppedSimulatorNode):
     # -- callbacks: store and convert only ------------------------------------------------
     def _take(self, command: tuple[float, float, float]) -> None:
         self.note_answer()
-        try:
-            self._sim.set_command(command, self._sim.t)
-        except ValueError as err:
-            self.get_logger().warn(f'refused command ({err}); keeping the previous one, which '
-                                   'stops the vehicle when it goes stale',
-                                   throttle_duration_sec=1.0)
+        self._sim.set_command(command, self._sim.t)   # a refused one: the guard brakes
+
+    def on_callback_error(self, source: str) -> None:
+        """Brake: a refused command (not finite, beyond the bounds) stops the vehicle."""
+        self._sim.stop()
 
     def _on_cmd_vel(self, msg: Twist) -> None:
         self._take((msg.linear.x, msg.linear.y, msg.angular.z))

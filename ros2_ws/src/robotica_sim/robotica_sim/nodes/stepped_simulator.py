@@ -35,8 +35,8 @@ import time
 from rclpy.clock import Clock as WallClock, ClockType
 from rclpy.duration import Duration
 from rclpy.executors import Executor
-from rclpy.node import Node
 from robotica_kin.ros.convert import seconds_to_stamp
+from robotica_kin.ros.guarded import GuardedNode
 from robotica_kin.ros.parameters import declare
 from robotica_kin.ros.qos import STREAM_PUB_QOS, STREAM_REPLAY_SUB_QOS
 from robotica_msgs.msg import SimulatorStatus
@@ -59,7 +59,7 @@ def header_stamp(data: bytes) -> float:
     return sec + nanosec * 1e-9
 
 
-class SteppedSimulatorNode(Node):
+class SteppedSimulatorNode(GuardedNode):
     """A node that steps a simulated plant at a fixed period; run it with :meth:`run`."""
 
     def __init__(self, name: str, *, default_step_period: float, command_topic: str) -> None:

@@ -22,6 +22,7 @@ import math
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
+from robotica_kin.bounds import bounded, MAX_ANGULAR_RATE, MAX_SPEED
 from robotica_kin.integrators import rk4_step
 from robotica_kin.mobile.vehicles import as_command, VehicleKinematics
 
@@ -144,14 +145,27 @@ class VehicleSimulation:
 
         ``command`` is (vx [m/s], vy [m/s], ω [rad/s]) for a twist-driven vehicle and
         (v [m/s], α [rad], 0) for a steered one. Raises ValueError for a non-finite command or
-        time; the previous command then stays (and goes stale on its own).
+        time, a speed beyond :data:`~robotica_kin.bounds.MAX_SPEED` or a rate beyond
+        :data:`~robotica_kin.bounds.MAX_ANGULAR_RATE`, or actuator targets that are not finite;
+        the previous command then stays (and goes stale on its own, or :meth:`stop` stops it).
         """
         array = as_command(command)
         if not math.isfinite(t):
             raise ValueError(f'command time must be finite, got {t!r}')
-        self._targets = self.kinematics.actuator_targets(array)
+        bounded('speed', array[0], MAX_SPEED)
+        if not self.kinematics.steered:
+            bounded('lateral speed', array[1], MAX_SPEED)
+            bounded('yaw rate', array[2], MAX_ANGULAR_RATE)
+        targets = self.kinematics.actuator_targets(array)
+        if not np.isfinite(targets).all():
+            raise ValueError(f'command {array.tolist()} gives non-finite actuator targets')
+        self._targets = targets
         self._command = array
         self._command_time = float(t)
+
+    def stop(self) -> None:
+        """Stop now, as a stale command does (zero speeds; the steering is kept)."""
+        self._command_time = -math.inf
 
     def command_is_stale(self) -> bool:
         """Tell whether the newest command is older than ``cmd_timeout`` at the current time."""

@@ -181,6 +181,29 @@ def test_non_finite_command_is_refused_and_keeps_the_previous_one(v, w):
     assert sim.command_is_stale()
 
 
+@pytest.mark.parametrize('vehicle, command', [
+    ('differential', (1e308, 0.0, 0.0)),      # the Twist: wheel speeds overflowed to inf
+    ('differential', (0.0, 0.0, -1e3)),
+    ('omni_three', (0.0, 101.0, 0.0)),
+    ('tricycle', (1e308, 0.3, 0.0)),          # the VehicleCommand: "math domain error"
+    ('ackermann', (-1e200, 0.0, 0.0)),
+])
+def test_a_command_beyond_the_physical_bounds_is_refused_and_stop_brakes(vehicle, command):
+    # Bounds of robotica_kin.bounds: 100 m/s, 100 rad/s.
+    sim = VehicleSimulation(vehicle_kinematics(vehicle, VehicleGeometry()),
+                            VehicleSimulationParams(step_period=0.1, cmd_timeout=5.0))
+    sim.set_command((0.5, 0.0, 0.0), t=0.0)
+    sim.step()
+    with pytest.raises(ValueError, match='must be <= 100.0'):
+        sim.set_command(command, t=sim.t)
+    sim.stop()
+    assert sim.command_is_stale()
+    pose = sim.pose.copy()
+    sim.step()
+    assert np.isfinite(sim.pose).all() and sim.twist[0] == 0.0
+    assert sim.pose[:2] == pytest.approx(pose[:2], abs=1e-12)
+
+
 @pytest.mark.parametrize('initial_pose', [
     (0.0, 0.0),
     (0.0, 0.0, 0.0, 0.0),

@@ -1,0 +1,110 @@
+"""
+Fuzz tests of every subscriber of the robotica_ctrl nodes: hostile messages, then valid ones.
+
+Each node gets a seeded burst of hostile messages on each of its inputs (every field NaN, ±inf,
+±1e308, extreme integers, absurd stamps, empty or wrong-size arrays; half of them a valid message
+with some fields corrupted), bounded in count and wall time
+(:func:`robotica_kin.ros.hostile.fuzz`). The node must stay alive, publish nothing non-finite,
+and answer valid input normally afterwards.
+"""
+import math
+import random
+
+from builtin_interfaces.msg import Duration
+from geometry_msgs.msg import PoseStamped, Twist
+from nav_msgs.msg import Odometry, Path
+import pytest
+from robotica_kin.ros.guarded import non_finite_fields
+from robotica_kin.ros.hostile import fuzz
+from robotica_msgs.msg import JointControllerState, TrackingError
+from sensor_msgs.msg import JointState
+from std_msgs.msg import Float64MultiArray
+from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
+
+pytestmark = pytest.mark.ros
+PUMA_JOINTS = [f'joint_{i}' for i in range(1, 7)]
+
+
+def _stamped(msg, t):
+    msg.header.stamp.sec, msg.header.stamp.nanosec = int(t), round((t - int(t)) * 1e9)
+    return msg
+
+
+def _joint_state(t):
+    return _stamped(JointState(name=PUMA_JOINTS, position=[0.0] * 6, velocity=[0.0] * 6), t)
+
+
+def _trajectory(t):
+    return JointTrajectory(joint_names=PUMA_JOINTS, points=[
+        JointTrajectoryPoint(positions=[0.0] * 6, time_from_start=Duration(sec=s))
+        for s in (0, 100)])
+
+
+def _odom(t):
+    msg = _stamped(Odometry(), t)
+    msg.header.frame_id = 'odom'
+    msg.pose.pose.position.y = 0.5
+    msg.pose.pose.orientation.w = 1.0
+    return msg
+
+
+def _path(t):
+    path = Path()
+    path.header.frame_id = 'odom'
+    for i in range(101):
+        pose = PoseStamped()
+        pose.pose.position.x = 0.1 * i
+        path.poses.append(pose)
+    return path
+
+
+CASES = {
+    'joint_controller': (
+        [], {'joint_states': (JointState, _joint_state),
+             '/joint_controller/joint_trajectory': (JointTrajectory, _trajectory)},
+        {'joint_torques': Float64MultiArray,
+         '/joint_controller/controller_state': JointControllerState},
+        lambda got: any(m.header.stamp.sec >= 100
+                        for m in got['/joint_controller/controller_state'][-20:])),
+    'path_tracker': (
+        ['-r', '/path_tracker/path:=/path'],
+        {'odom': (Odometry, _odom), '/path': (Path, _path)},
+        {'cmd_vel': Twist, '/path_tracker/tracking_error': TrackingError},
+        lambda got: any(m.header.stamp.sec >= 100 and m.cross_track == pytest.approx(0.5)
+                        for m in got['/path_tracker/tracking_error'][-20:])
+        and got['cmd_vel'][-1].linear.x > 0.0),
+}
+
+
+@pytest.mark.parametrize('case', sorted(CASES))
+def test_hostile_messages_neither_kill_nor_poison_the_node(case, start_node, ros_node,
+                                                           read_output):
+    parameters, inputs, outputs, recovered = CASES[case]
+    node, executor = ros_node
+    proc = start_node('robotica_ctrl', case, *parameters)
+    received, ok = fuzz(node, executor, inputs, outputs, recovered, random.Random(f'{case}-16'))
+    assert ok, f'no normal output after the burst:\n{read_output(proc)}'
+    assert proc.poll() is None
+    for topic in outputs:
+        bad = [non_finite_fields(m) for m in received[topic]]
+        assert not any(bad), f'{topic} published non-finite {[b for b in bad if b][:3]}'
+    assert 'Traceback' not in read_output(proc)
+
+
+def test_a_state_whose_torques_overflow_is_not_answered(start_node, ros_node, spin, read_output):
+    # The issue's case: q' = 1e200 made rne return NaN and the controller publish NaN torques.
+    node, executor = ros_node
+    proc = start_node('robotica_ctrl', 'joint_controller')
+    received, ok = fuzz(
+        node, executor, {'joint_states': (JointState, _joint_state)},
+        {'joint_torques': Float64MultiArray}, lambda got: bool(got['joint_torques']),
+        random.Random(0), count=0)
+    assert ok
+    n = len(received['joint_torques'])
+    pub = node.create_publisher(JointState, 'joint_states', 10)
+    bad = _stamped(JointState(name=PUMA_JOINTS, position=[0.0] * 6, velocity=[1e200] * 6), 200.0)
+    assert spin(executor, lambda: pub.get_subscription_count() > 0)
+    pub.publish(bad)
+    assert spin(executor, lambda: 'joint velocities' in read_output(proc), timeout=10.0)
+    assert all(math.isfinite(v) for m in received['joint_torques'][n:] for v in m.data)
+    assert proc.poll() is None

@@ -1,0 +1,221 @@
+"""
+The guard every robotica node runs under: a bad message costs that message, never the node.
+
+:class:`GuardedNode` is the base class of every node in ``nodes/``. By construction:
+
+* each subscription, timer and service callback runs inside a guard: an exception raised in it
+  (a refused input, a value out of the physical bounds of :mod:`robotica_kin.bounds`, a
+  non-finite output, a bug) is caught and logged as one line naming the topic (or timer,
+  service) and the reason, at most once per ``ERROR_LOG_PERIOD`` per source (with the count of
+  those not logged in between); the message is dropped, :meth:`GuardedNode.on_callback_error`
+  issues the node's safe output (a simulator brakes, a tracker commands a stop, a joint
+  controller does not answer, which brakes the arm simulator on its stale command), and the node
+  keeps running. A service answers with its default (empty, unsuccessful) response.
+* each publisher is a :class:`GuardedPublisher`: a message with a non-finite float (``inf``
+  anywhere; NaN outside the fields the node declares as "not known") is not published, and
+  :class:`NonFiniteOutput` is raised instead, so that inside a callback the guard logs it and
+  issues the safe output; after shutdown (the context invalid, e.g. on SIGINT while a loop still
+  publishes) a publish does nothing instead of raising.
+
+Configuration errors at start-up are not the guard's: the node's constructor raises
+``ValueError`` and :func:`robotica_kin.ros.entry_point.run_node` exits 2 with one line.
+"""
+import importlib
+import math
+from operator import attrgetter
+import time
+from typing import Any, Callable, Iterable, NamedTuple
+
+import numpy as np
+from rclpy._rclpy_pybind11 import RCLError
+from rclpy.node import Node
+from rclpy.publisher import Publisher
+
+__all__ = ['ERROR_LOG_PERIOD', 'GuardedNode', 'GuardedPublisher', 'NonFiniteOutput',
+           'non_finite_fields']
+
+ERROR_LOG_PERIOD = 1.0   # [s, wall clock] at most one log line per source and period
+
+_FLOATS = ('float', 'double')
+
+
+class NonFiniteOutput(ValueError):
+    """A message to publish holds a non-finite number; it was not published."""
+
+
+class _Plan(NamedTuple):
+    """Where the floats of a message type are: dotted paths and one C getter for each kind."""
+
+    scalars: tuple[str, ...]
+    arrays: tuple[str, ...]
+    sequences: tuple[tuple[str, type], ...]   # sequences of messages: (path, element type)
+    get_scalars: Callable[[Any], tuple]
+    get_arrays: Callable[[Any], tuple]
+
+
+_plans: dict[type, _Plan] = {}
+
+
+def _getter(paths: list[str]) -> Callable[[Any], tuple]:
+    if not paths:
+        return lambda msg: ()
+    get = attrgetter(*paths)
+    return get if len(paths) > 1 else (lambda msg: (get(msg),))
+
+
+def _paths(msg_type: type, prefix: str, plan: tuple[list, list, list]) -> None:
+    scalars, arrays, sequences = plan
+    for name, kind in msg_type.get_fields_and_field_types().items():
+        sequence = kind.startswith('sequence<') or kind.endswith(']')
+        base = kind.removeprefix('sequence<').split('[')[0].split(',')[0].rstrip('>')
+        path = prefix + name
+        if base in _FLOATS:
+            (arrays if sequence else scalars).append(path)
+        elif '/' in base:
+            sub = _message_type(base)
+            if sequence:
+                sequences.append((path, sub))
+            else:
+                _paths(sub, path + '.', plan)
+
+
+def _message_type(name: str) -> type:
+    package, _, message = name.partition('/')
+    return getattr(importlib.import_module(f'{package}.msg'), message)
+
+
+def _plan(msg_type: type) -> _Plan:
+    plan = _plans.get(msg_type)
+    if plan is None:
+        scalars: list[str] = []
+        arrays: list[str] = []
+        sequences: list[tuple[str, type]] = []
+        _paths(msg_type, '', (scalars, arrays, sequences))
+        plan = _Plan(tuple(scalars), tuple(arrays), tuple(sequences), _getter(scalars),
+                     _getter(arrays))
+        _plans[msg_type] = plan
+    return plan
+
+
+def non_finite_fields(msg: Any, allow_nan: Iterable[str] = (), prefix: str = '') -> list[str]:
+    """
+    Return the dotted names of the fields of ``msg`` that hold a non-finite float.
+
+    A field named in ``allow_nan`` (dotted, e.g. ``velocity``) may hold NaN ("not known") but
+    never an infinity.
+    """
+    plan = _plan(type(msg))
+    bad: list[str] = []
+    scalars = plan.get_scalars(msg)
+    arrays = [np.asarray(a, dtype=np.float64) for a in plan.get_arrays(msg)]
+    if not (all(map(math.isfinite, scalars)) and all(np.isfinite(a).all() for a in arrays)):
+        allowed = set(allow_nan)
+        for path, value in zip(plan.scalars, scalars):
+            if not (math.isfinite(value) or (prefix + path in allowed and math.isnan(value))):
+                bad.append(prefix + path)
+        for path, array in zip(plan.arrays, arrays):
+            if not (np.isfinite(array).all()
+                    or (prefix + path in allowed and not np.isinf(array).any())):
+                bad.append(prefix + path)
+    for path, _ in plan.sequences:
+        for i, item in enumerate(attrgetter(path)(msg)):
+            bad += non_finite_fields(item, allow_nan, f'{prefix}{path}[{i}].')
+    return bad
+
+
+class GuardedPublisher(Publisher):
+    """A publisher that refuses non-finite messages and is silent after shutdown."""
+
+    allow_nan: frozenset[str] = frozenset()
+    context: Any = None
+
+    def publish(self, msg: Any) -> None:
+        """
+        Publish ``msg`` unless it holds a non-finite float (then raise NonFiniteOutput).
+
+        After shutdown (the node's context no longer valid) nothing is published or raised.
+        """
+        if not isinstance(msg, bytes):
+            bad = non_finite_fields(msg, self.allow_nan)
+            if bad:
+                raise NonFiniteOutput(f'non-finite {", ".join(bad)} on {self.topic_name}: '
+                                      'not published')
+        if self.context is not None and not self.context.ok():
+            return
+        try:
+            super().publish(msg)
+        except RCLError:
+            if self.context is None or self.context.ok():
+                raise
+
+
+class GuardedNode(Node):
+    """A node whose callbacks are guarded and whose publishers are :class:`GuardedPublisher`."""
+
+    def __init__(self, node_name: str, **kwargs: Any) -> None:
+        super().__init__(node_name, **kwargs)   # its /parameter_events publisher: rclpy's own
+        self._guard_log: dict[str, tuple[float, int]] = {}   # source -> (last logged, dropped)
+        self.callback_errors = 0
+
+    # -- what a node provides ----------------------------------------------------------------
+    def on_callback_error(self, source: str) -> None:
+        """Issue the node's safe output after a callback on ``source`` failed (default: none)."""
+
+    # -- the guard ---------------------------------------------------------------------------
+    def _guard(self, source: str, callback: Callable[..., Any],
+               fallback: Callable[..., Any] | None = None) -> Callable[..., Any]:
+        def guarded(*args: Any) -> Any:
+            try:
+                return callback(*args)
+            except Exception as err:   # noqa: B902 - the guard's purpose: any error, one message
+                self._callback_failed(source, err)
+                return fallback(*args) if fallback is not None else None
+        return guarded
+
+    def _callback_failed(self, source: str, err: Exception) -> None:
+        self.callback_errors += 1
+        now = time.monotonic()
+        last, dropped = self._guard_log.get(source, (-math.inf, 0))
+        if now - last >= ERROR_LOG_PERIOD:
+            more = f' ({dropped} more since the last report)' if dropped else ''
+            self.get_logger().error(f'{source}: {type(err).__name__}: {err}; message dropped'
+                                    f'{more}')
+            self._guard_log[source] = (now, 0)
+        else:
+            self._guard_log[source] = (last, dropped + 1)
+        try:
+            self.on_callback_error(source)
+        except Exception as safe_err:   # noqa: B902 - the safe output must not kill the node
+            self.get_logger().error(f'{source}: safe output failed: {safe_err}',
+                                    throttle_duration_sec=ERROR_LOG_PERIOD)
+
+    # -- guarded construction ----------------------------------------------------------------
+    def create_subscription(self, msg_type, topic, callback, qos_profile, **kwargs):  # noqa: D102
+        return super().create_subscription(msg_type, topic, self._guard(topic, callback),
+                                           qos_profile, **kwargs)
+
+    def create_timer(self, timer_period_sec, callback, *args, **kwargs):  # noqa: D102
+        name = getattr(callback, '__name__', 'callback')
+        return super().create_timer(timer_period_sec, self._guard(f'timer {name}', callback),
+                                    *args, **kwargs)
+
+    def create_service(self, srv_type, srv_name, callback, **kwargs):  # noqa: D102
+        return super().create_service(
+            srv_type, srv_name,
+            self._guard(f'service {srv_name}', callback, lambda request, response: response),
+            **kwargs)
+
+    def create_publisher(self, msg_type, topic, qos_profile, *,  # noqa: D417
+                         allow_nan: Iterable[str] = (), **kwargs):
+        """
+        Create a :class:`GuardedPublisher`.
+
+        ``allow_nan``: the dotted fields where NaN means "not known" and may be published.
+        """
+        if not hasattr(self, '_guard_log'):   # Node.__init__: parameter events carry inf
+            return super().create_publisher(msg_type, topic, qos_profile, **kwargs)
+        publisher = super().create_publisher(msg_type, topic, qos_profile,
+                                             publisher_class=GuardedPublisher, **kwargs)
+        publisher.allow_nan = frozenset(allow_nan)
+        publisher.context = self.context
+        return publisher

@@ -1,0 +1,85 @@
+"""
+Tests of the node guard (robotica_kin.ros.guarded) in process, and of the bounds it enforces.
+
+A callback that raises is logged and dropped, the node's safe output is issued, the next message
+is handled; a non-finite message is not published; a publish after shutdown is silent.
+"""
+import math
+
+from nav_msgs.msg import Odometry
+import pytest
+import rclpy
+from robotica_kin.bounds import bounded, MAX_SPEED, StampGate
+from robotica_kin.ros.guarded import GuardedNode, non_finite_fields, NonFiniteOutput
+from sensor_msgs.msg import JointState
+from std_msgs.msg import Float64
+
+pytestmark = pytest.mark.ros
+
+
+@pytest.fixture
+def guarded(ros_domain):
+    context = rclpy.Context()
+    rclpy.init(context=context, domain_id=ros_domain)
+
+    class Probe(GuardedNode):
+        safe = []
+
+        def on_callback_error(self, source):
+            self.safe.append(source)
+
+    node = Probe('guard_probe', context=context)
+    yield node, context
+    node.destroy_node()
+    rclpy.try_shutdown(context=context)
+
+
+def test_non_finite_fields_names_each_field_and_allows_declared_nan():
+    msg = Odometry()
+    msg.pose.covariance[35] = math.inf
+    msg.twist.twist.angular.z = math.nan
+    assert non_finite_fields(msg) == ['twist.twist.angular.z', 'pose.covariance']
+    joints = JointState(position=[0.0], velocity=[math.nan])
+    assert non_finite_fields(joints, ('velocity',)) == []
+    joints.velocity = [math.inf]
+    assert non_finite_fields(joints, ('velocity',)) == ['velocity']
+
+
+def test_a_failing_callback_is_dropped_and_the_safe_output_issued(guarded):
+    node, _ = guarded
+    handled = []
+
+    def callback(msg):
+        handled.append(bounded('speed', msg.data, MAX_SPEED))
+
+    sub = node.create_subscription(Float64, 'speed', callback, 10)
+    sub.callback(Float64(data=1e308))   # what the executor calls
+    sub.callback(Float64(data=0.5))
+    assert handled == [0.5]
+    assert node.safe == ['speed'] and node.callback_errors == 1
+
+
+def test_a_non_finite_message_is_not_published_and_shutdown_is_silent(guarded):
+    node, context = guarded
+    pub = node.create_publisher(Float64, 'out', 10)
+    with pytest.raises(NonFiniteOutput, match='data'):
+        pub.publish(Float64(data=math.nan))
+    pub.publish(Float64(data=1.0))
+    rclpy.try_shutdown(context=context)
+    pub.publish(Float64(data=1.0))   # the context is invalid: nothing, and no traceback
+
+
+def test_the_stamp_gate_refuses_a_jump_and_restarts_on_three_agreeing():
+    gate = StampGate(max_jump=10.0)
+    assert gate.check(1e9) == 'accept'   # an absurd first stamp
+    with pytest.raises(ValueError, match='more than 10.0 s'):
+        gate.check(1.0)
+    with pytest.raises(ValueError):
+        gate.check(1.02)
+    assert gate.check(1.04) == 'restart'
+    assert gate.check(1.06) == 'accept'
+    with pytest.raises(ValueError):
+        gate.check(-2.0 ** 31)
+    with pytest.raises(ValueError):
+        gate.check(math.nan)
+    assert gate.check(1.08) == 'accept' and gate.latest == 1.08
