@@ -24,7 +24,8 @@ Times [s] come in as arguments (a message's stamp); the class never reads a cloc
 than :data:`~robotica_kin.bounds.MAX_TIME_JUMP` from the latest encoder reading's is refused
 (``time_jumped``) and changes nothing, so that one absurd stamp cannot wedge the estimate; only
 :data:`JUMP_CONFIRMATIONS` encoder readings in a row that agree with each other move the time
-base there (``time_restarted``: a restarted clock, or a first reading that was the absurd one).
+base there (``time_restarted``: a restarted clock, or a first reading that was the absurd one;
+the rule of :class:`~robotica_kin.bounds.StampGate`).
 Likewise a travel faster than :data:`~robotica_kin.bounds.MAX_SPEED` is refused
 (``travel_refused``) until :data:`JUMP_CONFIRMATIONS` readings in a row make the new counts the
 base (``ticks_rebased``: an encoder that was reset). What a node
@@ -40,7 +41,7 @@ from typing import NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from robotica_kin.bounds import MAX_SPEED, MAX_TIME_JUMP
+from robotica_kin.bounds import MAX_SPEED, MAX_TIME_JUMP, StampGate
 from robotica_kin.finite import finite_real
 from robotica_kin.mobile.ekf_localization import (EkfLocalization, increment_between_poses,
                                                   OdometryNoise)
@@ -306,6 +307,7 @@ class OdometryFusion:
     _pending: list[_Measurement]
     _streaks: dict[str, int]
     _rejections: int
+    _stamps: StampGate
     _jumped: list[_Reading]
     _untravelled: int
     _events: list[FusionEvent]
@@ -349,7 +351,8 @@ class OdometryFusion:
         self._pending = []
         self._streaks = {}
         self._rejections = 0
-        self._jumped = []               # encoder readings in a row refused for their time
+        self._stamps = StampGate(MAX_TIME_JUMP, JUMP_CONFIRMATIONS)   # of the encoder readings
+        self._jumped = []               # the latest encoder readings refused for their time
         self._untravelled = 0           # readings in a row refused for their travel
         self._events = []               # what add_encoders did, for the next update()
 
@@ -380,18 +383,18 @@ class OdometryFusion:
                 raise ValueError(f'{name} must be an integer, got {count!r}')
         reading = _Reading(left_ticks, right_ticks, finite_real('t', t),
                            metres_per_tick(self._params.wheel_radius, ticks_per_revolution))
-        reference = self._encoder_time()
-        if reference is not None and abs(reading.t - reference) > MAX_TIME_JUMP:
-            jumped = self._jumped
-            agrees = jumped and 0.0 < reading.t - jumped[-1].t <= MAX_TIME_JUMP
-            self._jumped = jumped + [reading] if agrees else [reading]
-            if len(self._jumped) < JUMP_CONFIRMATIONS:
-                self._events.append(FusionEvent('time_jumped', t=reading.t,
-                                                t_previous=reference))
-                return
+        reference = math.nan if self._stamps.latest is None else self._stamps.latest
+        try:
+            restart = self._stamps.check(reading.t) == 'restart'
+        except ValueError:
+            self._jumped = self._jumped[1 - JUMP_CONFIRMATIONS:] + [reading]
+            self._events.append(FusionEvent('time_jumped', t=reading.t, t_previous=reference))
+            return
+        if restart:   # the time base moves to the agreeing readings refused so far and this one
             self._events.append(FusionEvent('time_restarted', t=reading.t,
                                             t_previous=reference))
-            self._readings, self._jumped, self._last = self._jumped, [], None
+            self._readings, self._last = self._jumped[1 - JUMP_CONFIRMATIONS:] + [reading], None
+            self._jumped = []
             return
         self._jumped = []
         if self._readings and abs(self._readings[-1].t - reading.t) <= STAMP_TOLERANCE:
@@ -427,8 +430,8 @@ class OdometryFusion:
         if not all(math.isfinite(v) for v in (t, rate, variance)):
             raise ValueError(f'gyro sample must be finite, got t = {t!r} s, rate = {rate!r} '
                              f'rad/s, variance = {variance!r}')
-        reference = self._encoder_time()
-        if reference is not None and abs(t - reference) > MAX_TIME_JUMP:
+        reference = self._jumped_from(t)
+        if reference is not None:
             raise ValueError(f'gyro sample of t = {t!r} s is more than {MAX_TIME_JUMP} s from '
                              f'the encoder time {reference!r} s')
         if self._newest_gyro_t is not None and t <= self._newest_gyro_t + STAMP_TOLERANCE:
@@ -613,15 +616,9 @@ class OdometryFusion:
         self._apply_due(t, events)
         return True
 
-    def _encoder_time(self) -> float | None:
-        """Return the time [s] of the latest encoder reading accepted (queued or applied)."""
-        if self._readings:
-            return self._readings[-1].t
-        return None if self._last is None else self._last.t
-
     def _jumped_from(self, t: float) -> float | None:
         """Return the encoder time [s] if ``t`` [s] is more than ``MAX_TIME_JUMP`` from it."""
-        reference = self._encoder_time()
+        reference = self._stamps.latest
         return reference if reference is not None and abs(t - reference) > MAX_TIME_JUMP \
             else None
 
