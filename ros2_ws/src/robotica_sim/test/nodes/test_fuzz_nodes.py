@@ -8,6 +8,7 @@ nothing non-finite (except the fields its docs declare NaN, "not known"), and an
 normally afterwards.
 """
 import random
+import signal
 
 from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
@@ -116,3 +117,20 @@ def test_hostile_messages_neither_kill_nor_poison_the_node(case, start_node, ros
         bad = [non_finite_fields(m, nan_fields) for m in received[topic]]
         assert not any(bad), f'{topic} published non-finite {[b for b in bad if b][:3]}'
     assert 'Traceback' not in read_output(proc)
+
+
+@pytest.mark.parametrize('name, parameters', [
+    ('arm_simulator', ['-p', 'robot:=puma560']),   # 1 kHz of publishing when SIGINT comes
+    ('simulator', []),
+])
+def test_sigint_while_publishing_ends_cleanly(name, parameters, start_node, ros_node, spin,
+                                              read_output):
+    node, executor = ros_node
+    proc = start_node('robotica_sim', name, *parameters)
+    received = []
+    node.create_subscription(JointState, 'joint_states', received.append, 10)
+    assert spin(executor, lambda: len(received) > 20)
+    proc.send_signal(signal.SIGINT)
+    assert proc.wait(timeout=15) == 0
+    text = read_output(proc)
+    assert 'Traceback' not in text and 'context is invalid' not in text, text
