@@ -8,7 +8,6 @@ only some topics. The figures are checked to be real images (size, coloured pixe
 to reference every figure written, the tracking errors to be the ones ``robotica grade``
 computes. The numbers in each caption are checked by test_figures.py.
 """
-import argparse
 import html
 import math
 from pathlib import Path
@@ -19,7 +18,7 @@ import numpy as np
 import pytest
 from robotica_kin.geodetic import GeodeticOrigin
 from robotica_sim.bags.typestore import ensure_type, jazzy_typestore
-from robotica_sim.cli import report as report_cli
+from robotica_sim.cli.main import run_verb
 from robotica_sim.grading.metrics import compute_metrics
 from robotica_sim.grading.report import default_output, ReportError, write_report
 from robotica_sim.grading.series import load_run
@@ -253,9 +252,8 @@ def arm(tmp_path_factory):
 
 
 def run_cli(*argv):
-    parser = argparse.ArgumentParser()
-    report_cli.add_arguments(parser)
-    return report_cli.main(parser.parse_args([str(a) for a in argv]))
+    """Run ``robotica report`` as the command does (errors mapped to exit codes by cli.main)."""
+    return run_verb(['report', *(str(a) for a in argv)])
 
 
 def caption(report, name):

@@ -40,7 +40,7 @@ def test_record_play_record_gives_the_same_messages(bag, start_node, tmp_path):
 
 def test_play_refuses_bad_arguments(bag, tmp_path):
     command = [sys.executable, '-m', 'robotica_sim.cli.main', 'play']
-    for arguments, code, text in (([str(bag), '--rate', '0'], 2, 'argument --rate: must be >= 0.001'),
+    for arguments, code, text in (([str(bag), '--rate', '0'], 2, '--rate: must be >= 0.001'),
                                   ([str(bag), '--remap', 'a=b'], 2, 'must read /from:=/to'),
                                   ([str(bag), '--topics', '/c'], 1, 'no topic /c'),
                                   ([str(tmp_path)], 1, 'not a bag directory')):
