@@ -9,14 +9,15 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from robotica_kin.finite import finite_real
 
-__all__ = ['MAX_ANGULAR_RATE', 'MAX_FORCE_TORQUE', 'MAX_JOINT_POSITION', 'MAX_JOINT_VELOCITY',
-           'MAX_LATITUDE', 'MAX_LONGITUDE', 'MAX_SPEED', 'MAX_TIME_JUMP', 'bounded',
-           'bounded_array', 'StampGate']
+__all__ = ['MAX_ANGULAR_RATE', 'MAX_FORCE_TORQUE', 'MAX_JOINT_ACCELERATION',
+           'MAX_JOINT_POSITION', 'MAX_JOINT_VELOCITY', 'MAX_LATITUDE', 'MAX_LONGITUDE',
+           'MAX_SPEED', 'MAX_TIME_JUMP', 'bounded', 'bounded_array', 'StampGate']
 
 MAX_SPEED = 100.0              # [m/s] a linear speed (a car on a motorway: 36 m/s)
 MAX_ANGULAR_RATE = 100.0       # [rad/s] a yaw rate or a steering rate (16 turns per second)
 MAX_JOINT_POSITION = 1e4       # [rad | m] a joint position (1600 turns of a revolute joint)
 MAX_JOINT_VELOCITY = 1e3       # [rad/s | m/s] a joint velocity
+MAX_JOINT_ACCELERATION = 1e6   # [rad/s² | m/s²] a joint acceleration (0 to 1e3 rad/s in 1 ms)
 MAX_FORCE_TORQUE = 1e6         # [N m | N] a joint torque or force
 MAX_LATITUDE = 90.0            # [deg] WGS-84 latitude
 MAX_LONGITUDE = 180.0          # [deg] WGS-84 longitude

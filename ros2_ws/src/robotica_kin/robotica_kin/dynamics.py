@@ -16,6 +16,11 @@ The model is (A.1), ``tau = M(q) q'' + G(q) + V(q, q') + F(q')``:
 integrates (5.88) with Pinocchio's ABA and an adaptive Runge-Kutta 4(5) (SciPy's ``RK45``, the
 method of MATLAB's ``ode45``).
 
+Every entry point refuses, with ValueError, joint positions, velocities and accelerations that
+are not finite or beyond the physical bounds of :mod:`robotica_kin.bounds`
+(``MAX_JOINT_POSITION``, ``MAX_JOINT_VELOCITY``, ``MAX_JOINT_ACCELERATION``), and a result that
+is not finite (a robot of absurd mass or inertia): q' = 1e200 once gave NaN torques silently.
+
 ``dyn`` is a :class:`~robotica_kin.dh.DHModel` that carries a ``dyn`` table (e.g.
 ``robots.puma560()``), a raw HEMERO table of 20 columns (book §A.3), or the
 :class:`~robotica_kin.pinocchio_model.PinocchioArm` of such a robot. Given a robot, a function
@@ -31,7 +36,10 @@ from typing import Any, Callable
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 import pinocchio as pin
+from robotica_kin.bounds import (bounded_array, MAX_JOINT_ACCELERATION, MAX_JOINT_POSITION,
+                                 MAX_JOINT_VELOCITY)
 from robotica_kin.dh import as_dyn_model, DHModel
+from robotica_kin.finite import all_finite
 from robotica_kin.pinocchio_model import data_for, dyn_arm, PinocchioArm
 from scipy.integrate import solve_ivp
 
@@ -40,6 +48,9 @@ __all__ = ['DEFAULT_GRAVITY', 'FdynResult', 'JointFriction', 'coriolis', 'coriol
 
 DEFAULT_GRAVITY = (0.0, 0.0, -9.81)
 """Gravity acceleration in the base frame {0} [m/s²] when ``grav`` is not given."""
+
+_BOUNDS = {'q': MAX_JOINT_POSITION, 'q0': MAX_JOINT_POSITION, 'qd': MAX_JOINT_VELOCITY,
+           'qd0': MAX_JOINT_VELOCITY, 'qdd': MAX_JOINT_ACCELERATION}
 
 
 def _gravity_vector(grav: ArrayLike | None) -> NDArray[np.float64]:
@@ -73,8 +84,14 @@ def _model_and_data(arm: PinocchioArm, grav: ArrayLike | None, data: Any) -> tup
 
 
 def _vectors(robot: DHModel, **arrays: ArrayLike) -> tuple[NDArray[np.float64], ...]:
-    """Return the arrays as (m, n) float64, all with the same m, or raise ValueError."""
-    out = [robot.check_q(value, name) for name, value in arrays.items()]
+    """
+    Return the arrays as (m, n) float64, all with the same m, or raise ValueError.
+
+    Each is named by its keyword (``q``, ``qd``, ``qdd``, ``q0``, ``qd0``) and must lie within
+    that quantity's physical bound.
+    """
+    out = [bounded_array(name, robot.check_q(value, name), _BOUNDS[name])
+           for name, value in arrays.items()]
     shapes = {a.shape for a in out}
     if len(shapes) != 1:
         raise ValueError(f'{", ".join(arrays)} must have the same shape, got '
@@ -82,7 +99,11 @@ def _vectors(robot: DHModel, **arrays: ArrayLike) -> tuple[NDArray[np.float64], 
     return tuple(np.atleast_2d(a) for a in out)
 
 
-def _single(result: NDArray[np.float64], like: ArrayLike) -> NDArray[np.float64]:
+def _single(result: NDArray[np.float64], like: ArrayLike, name: str) -> NDArray[np.float64]:
+    """Return ``result`` (one row for a ``like`` of shape (n,)) if finite, else ValueError."""
+    if not np.isfinite(result).all():
+        raise ValueError(f'{name} is not finite for these joint values (a robot of absurd mass, '
+                         f'inertia or friction?): {result}')
     return result[0] if np.ndim(like) == 1 else result
 
 
@@ -136,7 +157,7 @@ def friction(dyn: DHModel | ArrayLike, qd: ArrayLike) -> NDArray[np.float64]:
     """
     robot = as_dyn_model(dyn)
     (v,) = _vectors(robot, qd=qd)
-    return _single(JointFriction(robot)(v), qd)
+    return _single(JointFriction(robot)(v), qd, 'friction')
 
 
 def rne(dyn: DHModel | PinocchioArm | ArrayLike, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike,
@@ -164,7 +185,8 @@ def rne(dyn: DHModel | PinocchioArm | ArrayLike, q: ArrayLike, qd: ArrayLike, qd
     Raises
     ------
     ValueError
-        For a robot without dynamics, sizes that do not match, NaN, or a ``data`` not of the
+        For a robot without dynamics, sizes that do not match, NaN, joint values beyond the
+        bounds of :mod:`robotica_kin.bounds`, a non-finite result, or a ``data`` not of the
         arm's model.
 
     Examples
@@ -181,7 +203,7 @@ def rne(dyn: DHModel | PinocchioArm | ArrayLike, q: ArrayLike, qd: ArrayLike, qd
     qq, vv, aa = _vectors(arm.robot, q=q, qd=qd, qdd=qdd)
     model, scratch = _model_and_data(arm, grav, data)
     tau = np.array([pin.rnea(model, scratch, qq[k], vv[k], aa[k]) for k in range(qq.shape[0])])
-    return _single(tau + np.atleast_2d(friction(arm.robot, vv)), q)
+    return _single(tau + np.atleast_2d(friction(arm.robot, vv)), q, 'rne')
 
 
 def inertia(dyn: DHModel | PinocchioArm | ArrayLike, q: ArrayLike, *,
@@ -208,7 +230,7 @@ def inertia(dyn: DHModel | PinocchioArm | ArrayLike, q: ArrayLike, *,
     for k in range(qq.shape[0]):
         upper = pin.crba(model, scratch, qq[k])
         out[k] = np.triu(upper) + np.triu(upper, 1).T
-    return _single(out, q)
+    return _single(out, q, 'inertia')
 
 
 def gravity(dyn: DHModel | PinocchioArm | ArrayLike, q: ArrayLike,
@@ -229,7 +251,8 @@ def gravity(dyn: DHModel | PinocchioArm | ArrayLike, q: ArrayLike,
     arm = dyn_arm(dyn)
     (qq,) = _vectors(arm.robot, q=q)
     model, scratch = _model_and_data(arm, grav, data)
-    return _single(np.array([pin.computeGeneralizedGravity(model, scratch, qk) for qk in qq]), q)
+    return _single(np.array([pin.computeGeneralizedGravity(model, scratch, qk) for qk in qq]), q,
+                   'gravity')
 
 
 def coriolis(dyn: DHModel | PinocchioArm | ArrayLike, q: ArrayLike, qd: ArrayLike, *,
@@ -251,7 +274,7 @@ def coriolis(dyn: DHModel | PinocchioArm | ArrayLike, q: ArrayLike, qd: ArrayLik
     qq, vv = _vectors(arm.robot, q=q, qd=qd)
     model, scratch = _model_and_data(arm, [0.0, 0.0, 0.0], data)
     return _single(np.array([pin.nonLinearEffects(model, scratch, qq[k], vv[k])
-                             for k in range(qq.shape[0])]), q)
+                             for k in range(qq.shape[0])]), q, 'coriolis')
 
 
 def coriolis_matrix(dyn: DHModel | PinocchioArm | ArrayLike, q: ArrayLike, qd: ArrayLike, *,
@@ -266,7 +289,8 @@ def coriolis_matrix(dyn: DHModel | PinocchioArm | ArrayLike, q: ArrayLike, qd: A
     if qq.shape[0] != 1 or np.ndim(q) != 1:
         raise ValueError('coriolis_matrix takes one configuration, q of shape (n,)')
     model, scratch = _model_and_data(arm, None, data)
-    return np.array(pin.computeCoriolisMatrix(model, scratch, qq[0], vv[0]))
+    return _single(np.array([pin.computeCoriolisMatrix(model, scratch, qq[0], vv[0])]), q,
+                   'coriolis_matrix')
 
 
 @dataclass(frozen=True)
@@ -313,7 +337,9 @@ def fdyn(dyn: DHModel | PinocchioArm | ArrayLike, t0: float, tf: float,
     Raises
     ------
     ValueError
-        For bad sizes, NaN, tf <= t0, or a torque function that returns a wrong size or NaN.
+        For bad sizes, NaN, q0 or qd0 beyond the bounds of :mod:`robotica_kin.bounds`,
+        tf <= t0, a torque function that returns a wrong size or NaN, or accelerations that are
+        not finite.
 
     """
     arm = dyn_arm(dyn)
@@ -332,6 +358,9 @@ def fdyn(dyn: DHModel | PinocchioArm | ArrayLike, t0: float, tf: float,
         if tau.shape != (n,) or not np.isfinite(tau).all():
             raise ValueError(f'torquefun must return {n} finite torques at t = {t}, got {tau!r}')
         qdd = pin.aba(model, data, q, qd, tau - friction(robot, qd))
+        if not all_finite(qdd):
+            raise ValueError(f'fdyn: the joint accelerations are not finite at t = {t} s '
+                             f'(q = {q}, qd = {qd})')
         return np.concatenate((qd, qdd))
 
     solution = solve_ivp(derivative, (float(t0), float(tf)), np.concatenate((start[0], speed[0])),

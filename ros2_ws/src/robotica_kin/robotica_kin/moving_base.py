@@ -139,7 +139,7 @@ def rne_moving_base(dyn: DHModel | PinocchioArm | ArrayLike, q: ArrayLike, qd: A
         full = pin.rnea(model, data, np.concatenate((pose, qq[k])),
                         np.concatenate((base_v[k], vv[k])), np.concatenate((spatial, aa[k])))
         tau[k] = full[6:]
-    return _single(tau + np.atleast_2d(friction(robot, vv)), q)
+    return _single(tau + np.atleast_2d(friction(robot, vv)), q, 'rne_moving_base')
 
 
 def base_motion_from_planar(v: ArrayLike, omega: ArrayLike, a_t: ArrayLike, alpha: ArrayLike,

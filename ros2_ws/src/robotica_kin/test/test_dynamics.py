@@ -197,6 +197,50 @@ def test_bad_input_is_refused(call, match):
         call()
 
 
+@pytest.mark.parametrize(('call', 'match'), [
+    # Issue 16: q' = 1e200 gave NaN torques silently. Bounds of robotica_kin.bounds: |q| <= 1e4,
+    # |q'| <= 1e3, |q''| <= 1e6.
+    (lambda: rne(puma560(), np.zeros(6), np.full(6, 1e200), np.zeros(6)), 'qd must be finite'),
+    (lambda: rne(puma560(), np.zeros(6), [0, 0, 1001.0, 0, 0, 0], np.zeros(6)), r'1000\.0'),
+    (lambda: rne(puma560(), [0, 0, 0, 0, 0, -2e4], np.zeros(6), np.zeros(6)), 'q must'),
+    (lambda: rne(puma560(), np.zeros(6), np.zeros(6), [0, 2e6, 0, 0, 0, 0]), 'qdd must'),
+    (lambda: rne(puma560(), np.zeros((2, 6)), [[0.0] * 6, [1e200] * 6], np.zeros((2, 6))),
+     'qd must'),
+    (lambda: coriolis(puma560(), np.zeros(6), np.full(6, 1e200)), 'qd must'),
+    (lambda: coriolis_matrix(puma560(), np.zeros(6), np.full(6, -1e10)), 'qd must'),
+    (lambda: friction(puma560(), np.full(6, 1e306)), 'qd must'),
+    (lambda: gravity(puma560(), np.full(6, 1e300)), 'q must'),
+    (lambda: inertia(puma560(), np.full(6, 1e300)), 'q must'),
+    (lambda: fdyn(puma560(), 0.0, 1.0, None, np.zeros(6), np.full(6, 1e200)), 'qd0 must'),
+])
+def test_absurd_joint_values_are_refused(call, match):
+    with pytest.raises(ValueError, match=match):
+        call()
+
+
+def test_a_result_that_overflows_is_refused():
+    # Ej. 5.1 with m1 = m2 = 1e308 kg, l1 = 3, l2 = 1 m: (5.77) M11 = l2² m2 + 2 l1 l2 m2
+    # + l1² (m1 + m2) = 25e308 kg m², beyond the largest float (1.8e308).
+    _, dyn = two_link_arm(1e308, 1e308, 3.0, 1.0)
+    with pytest.raises(ValueError, match='inertia is not finite'):
+        inertia(dyn, [0.0, 0.0])
+    with pytest.raises(ValueError, match='rne is not finite'):
+        rne(dyn, [0.0, 0.0], [0.0, 0.0], [1.0, 0.0])
+
+
+def test_values_at_the_bounds_are_taken():
+    # Ej. 5.1 (m1 = 2, m2 = 1 kg, l1 = 3, l2 = 1 m), horizontal plane (no gravity), stretched,
+    # joint 1 at q1' = 1000 rad/s (the bound), q2' = 0, q'' = 0: (5.77) V = (0, m2 l1 l2 s2 q1'²)
+    # = 0 at q2 = 0, and the centripetal force does no torque: tau = 0.
+    _, dyn = two_link_arm(2.0, 1.0, 3.0, 1.0)
+    tau = rne(dyn, [1e4, 0.0], [1e3, 0.0], [0.0, 0.0], grav=[0, 0, 0])
+    np.testing.assert_allclose(tau, [0.0, 0.0], atol=1e-6)
+    # q2 = pi/2: V2 = m2 l1 l2 q1'² = 3e6 N m; plus M21 q1'' with q1'' = 1e6 (the bound):
+    # M21 = l2² m2 + l1 l2 m2 cos q2 = 1 kg m², tau2 = 3e6 + 1e6.
+    tau = rne(dyn, [0.0, math.pi / 2], [1e3, 0.0], [1e6, 0.0], grav=[0, 0, 0])
+    assert tau[1] == pytest.approx(4e6, rel=1e-9)
+
+
 def test_robot_without_dyn_is_refused():
     from robotica_kin.robots import planar_rrr
     with pytest.raises(ValueError, match='no dyn table'):
