@@ -23,6 +23,7 @@ ROSDEP_KEYS = {
     'matplotlib': 'python3-matplotlib', 'pytest': 'python3-pytest',
     'hypothesis': 'python3-hypothesis', 'PIL': 'python3-pil', 'pinocchio': 'pinocchio',
     'rosbags': 'python3-rosbags-pip', 'mcap': 'python3-mcap-pip',
+    'foxglove': 'python3-foxglove-sdk-pip', 'websockets': 'python3-websockets-pip',
 }
 # Imported by tests from the repository's tests/ folder (pytest.ini's pythonpath), not packages.
 REPOSITORY_MODULES = {'reference_models', 'conftest'}

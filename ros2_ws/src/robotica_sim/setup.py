@@ -33,6 +33,7 @@ setup(
             'gps_emulator = robotica_sim.nodes.gps_emulator:main',
             'odometry = robotica_sim.nodes.odometry:main',
             'recorder = robotica_sim.nodes.recorder:main',
+            'view_relay = robotica_sim.nodes.view_relay:main',
             'robotica = robotica_sim.cli.main:main',
         ],
     },
