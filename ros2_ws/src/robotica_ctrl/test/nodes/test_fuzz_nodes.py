@@ -14,6 +14,7 @@ from builtin_interfaces.msg import Duration
 from geometry_msgs.msg import PoseStamped, Twist
 from nav_msgs.msg import Odometry, Path
 import pytest
+from robotica_kin.ros.convert import seconds_to_stamp
 from robotica_kin.ros.hostile import fuzz
 from robotica_msgs.msg import JointControllerState, TrackingError
 from sensor_msgs.msg import JointState
@@ -25,7 +26,7 @@ PUMA_JOINTS = [f'joint_{i}' for i in range(1, 7)]
 
 
 def _stamped(msg, t):
-    msg.header.stamp.sec, msg.header.stamp.nanosec = int(t), round((t - int(t)) * 1e9)
+    msg.header.stamp = seconds_to_stamp(t)
     return msg
 
 

@@ -13,9 +13,31 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 
+NANOSECONDS_PER_SECOND = 1_000_000_000
+
+
+def seconds(sec: int, nanosec: int) -> float:
+    """
+    Return the float seconds of a stamp's ``sec`` and ``nanosec``, or raise ValueError.
+
+    ``nanosec`` must lie in [0, 1e9) (builtin_interfaces/Time and Duration): a stamp with more is
+    malformed, not a later time (``nanosec = 2**32 - 1`` would move it 4.3 s on).
+
+    >>> seconds(12, 500_000_000)
+    12.5
+    >>> seconds(12, 1_000_000_000)
+    Traceback (most recent call last):
+    ...
+    ValueError: stamp nanosec must be in [0, 1e9), got 1000000000 (sec 12)
+    """
+    if not 0 <= nanosec < NANOSECONDS_PER_SECOND:
+        raise ValueError(f'stamp nanosec must be in [0, 1e9), got {nanosec} (sec {sec})')
+    return sec + nanosec * 1e-9
+
+
 def stamp_to_seconds(stamp: Time | Duration) -> float:
-    """Return a ``builtin_interfaces/Time`` (or ``Duration``) as float seconds."""
-    return stamp.sec + stamp.nanosec * 1e-9
+    """Return a ``builtin_interfaces/Time`` (or ``Duration``) as float seconds (see seconds)."""
+    return seconds(stamp.sec, stamp.nanosec)
 
 
 def seconds_to_stamp(t: float, kind: type = Time) -> Time:
@@ -28,7 +50,7 @@ def seconds_to_stamp(t: float, kind: type = Time) -> Time:
     builtin_interfaces.msg.Time(sec=1, nanosec=500000000)
     """
     ns = round(t * 1e9)
-    return kind(sec=ns // 1_000_000_000, nanosec=ns % 1_000_000_000)
+    return kind(sec=ns // NANOSECONDS_PER_SECOND, nanosec=ns % NANOSECONDS_PER_SECOND)
 
 
 def yaw_to_quaternion(yaw: float) -> Quaternion:

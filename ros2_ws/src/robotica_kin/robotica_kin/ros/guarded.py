@@ -9,8 +9,14 @@ The guard every robotica node runs under: a bad message costs that message, neve
   service) and the reason, at most once per ``ERROR_LOG_PERIOD`` per source (with the count of
   those not logged in between); the message is dropped, :meth:`GuardedNode.on_callback_error`
   issues the node's safe output (a simulator brakes, a tracker commands a stop, a joint
-  controller does not answer, which brakes the arm simulator on its stale command), and the node
-  keeps running. A service answers with its default (empty, unsuccessful) response.
+  controller does not answer, which brakes the arm simulator on its stale command), unless the
+  subscription was created with ``safe_output=False`` (an input that only observes, such as the
+  followed topics of a lockstep simulator), and the node keeps running. A service answers with its
+  default (empty, unsuccessful) response.
+* the ``/clock`` of a node on simulated time (``use_sim_time``) passes a
+  :class:`~robotica_kin.bounds.StampGate`: a tick more than ``MAX_TIME_JUMP`` from the node's
+  time, or malformed (``nanosec`` >= 1e9, negative), is refused and the time stays where it was
+  (one tick of 2**31 - 1 s moved every timer and every receive time of a recorder by 68 years).
 * each publisher is a :class:`GuardedPublisher`: a message with a non-finite float (``inf``
   anywhere; NaN outside the fields the node declares as "not known") is not published, and
   :class:`NonFiniteOutput` is raised instead, so that inside a callback the guard logs it and
@@ -30,6 +36,9 @@ import numpy as np
 from rclpy._rclpy_pybind11 import RCLError
 from rclpy.node import Node
 from rclpy.publisher import Publisher
+from rclpy.time_source import TimeSource
+from robotica_kin.bounds import StampGate
+from robotica_kin.ros.convert import stamp_to_seconds
 
 __all__ = ['ERROR_LOG_PERIOD', 'GuardedNode', 'GuardedPublisher', 'NonFiniteOutput',
            'non_finite_fields']
@@ -149,6 +158,19 @@ class GuardedPublisher(Publisher):
                 raise
 
 
+def _gated_clock(clock_callback: Callable[[Any], None]) -> Callable[[Any], None]:
+    """Return rclpy's ``/clock`` callback behind a StampGate (ValueError: tick refused)."""
+    gate = StampGate()
+
+    def gated(msg: Any) -> None:
+        t = stamp_to_seconds(msg.clock)
+        if t < 0.0:
+            raise ValueError(f'clock {t!r} s is negative')
+        gate.check(t)
+        clock_callback(msg)
+    return gated
+
+
 class GuardedNode(Node):
     """A node whose callbacks are guarded and whose publishers are :class:`GuardedPublisher`."""
 
@@ -163,16 +185,17 @@ class GuardedNode(Node):
 
     # -- the guard ---------------------------------------------------------------------------
     def _guard(self, source: str, callback: Callable[..., Any],
-               fallback: Callable[..., Any] | None = None) -> Callable[..., Any]:
+               fallback: Callable[..., Any] | None = None,
+               safe_output: bool = True) -> Callable[..., Any]:
         def guarded(*args: Any) -> Any:
             try:
                 return callback(*args)
             except Exception as err:   # noqa: B902 - the guard's purpose: any error, one message
-                self._callback_failed(source, err)
+                self._callback_failed(source, err, safe_output)
                 return fallback(*args) if fallback is not None else None
         return guarded
 
-    def _callback_failed(self, source: str, err: Exception) -> None:
+    def _callback_failed(self, source: str, err: Exception, safe_output: bool = True) -> None:
         self.callback_errors += 1
         now = time.monotonic()
         last, dropped = self._guard_log.get(source, (-math.inf, 0))
@@ -183,6 +206,8 @@ class GuardedNode(Node):
             self._guard_log[source] = (now, 0)
         else:
             self._guard_log[source] = (last, dropped + 1)
+        if not safe_output:
+            return
         try:
             self.on_callback_error(source)
         except Exception as safe_err:   # noqa: B902 - the safe output must not kill the node
@@ -190,9 +215,18 @@ class GuardedNode(Node):
                                     throttle_duration_sec=ERROR_LOG_PERIOD)
 
     # -- guarded construction ----------------------------------------------------------------
-    def create_subscription(self, msg_type, topic, callback, qos_profile, **kwargs):  # noqa: D102
-        return super().create_subscription(msg_type, topic, self._guard(topic, callback),
-                                           qos_profile, **kwargs)
+    def create_subscription(self, msg_type, topic, callback, qos_profile, *,  # noqa: D417
+                            safe_output: bool = True, **kwargs):
+        """
+        Create a subscription whose callback is guarded.
+
+        ``safe_output=False``: a message refused on this topic does not issue the safe output.
+        """
+        if getattr(callback, '__func__', None) is TimeSource.clock_callback:
+            callback, safe_output = _gated_clock(callback), False
+        return super().create_subscription(
+            msg_type, topic, self._guard(topic, callback, safe_output=safe_output), qos_profile,
+            **kwargs)
 
     def create_timer(self, timer_period_sec, callback, *args, **kwargs):  # noqa: D102
         name = getattr(callback, '__name__', 'callback')

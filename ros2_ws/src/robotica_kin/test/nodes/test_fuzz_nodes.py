@@ -11,6 +11,7 @@ import time
 
 from geometry_msgs.msg import Point, Pose, PoseArray, PoseStamped, Quaternion
 import pytest
+from robotica_kin.ros.convert import seconds_to_stamp
 from robotica_kin.ros.guarded import non_finite_fields
 from robotica_kin.ros.hostile import fuzz, hostile_message
 from robotica_msgs.srv import ForwardKinematics, InverseKinematics
@@ -24,7 +25,7 @@ REQUEST_SECONDS = 20.0
 
 def _joint_state(t):
     msg = JointState(name=PUMA_JOINTS, position=[0.1] * 6)
-    msg.header.stamp.sec, msg.header.stamp.nanosec = int(t), round((t - int(t)) * 1e9)
+    msg.header.stamp = seconds_to_stamp(t)
     return msg
 
 

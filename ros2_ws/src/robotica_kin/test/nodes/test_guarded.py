@@ -6,11 +6,14 @@ is handled; a non-finite message is not published; a publish after shutdown is s
 """
 import math
 
+from builtin_interfaces.msg import Time
 from nav_msgs.msg import Odometry
 import pytest
 import rclpy
+from rclpy.parameter import Parameter
 from robotica_kin.bounds import bounded, MAX_SPEED, StampGate
 from robotica_kin.ros.guarded import GuardedNode, non_finite_fields, NonFiniteOutput
+from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64
 
@@ -57,6 +60,34 @@ def test_a_failing_callback_is_dropped_and_the_safe_output_issued(guarded):
     sub.callback(Float64(data=0.5))
     assert handled == [0.5]
     assert node.safe == ['speed'] and node.callback_errors == 1
+
+
+def test_an_observing_subscription_drops_without_the_safe_output(guarded):
+    node, _ = guarded
+    sub = node.create_subscription(Float64, 'seen', lambda msg: bounded('x', msg.data, 1.0), 10,
+                                   safe_output=False)
+    sub.callback(Float64(data=2.0))
+    assert node.safe == [] and node.callback_errors == 1
+
+
+def test_a_clock_tick_that_jumps_or_is_malformed_leaves_the_time(ros_domain):
+    context = rclpy.Context()
+    rclpy.init(context=context, domain_id=ros_domain)
+    node = GuardedNode('clock_probe', context=context,
+                       parameter_overrides=[Parameter('use_sim_time', value=True)])
+    try:
+        (sub,) = [s for s in node.subscriptions if s.topic_name == '/clock']
+        sub.callback(Clock(clock=Time(sec=10)))
+        for hostile in (Time(sec=2 ** 31 - 1), Time(sec=10, nanosec=2 ** 32 - 1),
+                        Time(sec=-5), Time(sec=10 + 3601)):
+            sub.callback(Clock(clock=hostile))
+            assert node.get_clock().now().nanoseconds == 10 * 10 ** 9, hostile
+        sub.callback(Clock(clock=Time(sec=11)))
+        assert node.get_clock().now().nanoseconds == 11 * 10 ** 9
+        assert node.callback_errors == 4
+    finally:
+        node.destroy_node()
+        rclpy.try_shutdown(context=context)
 
 
 def test_a_non_finite_message_is_not_published_and_shutdown_is_silent(guarded):

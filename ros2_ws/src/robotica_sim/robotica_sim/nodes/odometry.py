@@ -7,7 +7,8 @@ C_m = 2π c / ticks_per_revolution, ΔU_c = (ΔU_l + ΔU_r)/2, Δθ = (ΔU_r −
 ``integration_method`` (``euler``, ``midpoint`` or the exact arc (4.93), book §4.7.5). With
 ``heading_source`` = ``gyro`` the heading increment is instead the integral of the yaw rate of
 ``imu/data`` (sensor_msgs/Imu) since the previous reading: the encoders then give the distance
-only (synchronous drive, skid steer, slipping wheels).
+only (synchronous drive, skid steer, slipping wheels). A rate beyond ``MAX_ANGULAR_RATE`` of
+robotica_kin.bounds, or a variance beyond its square, is ignored like a non-finite one.
 
 The estimate and its covariance are those of
 :class:`robotica_kin.mobile.ekf_localization.EkfLocalization`: the prediction propagates the
@@ -38,7 +39,8 @@ import math
 from nav_msgs.msg import Odometry
 import numpy as np
 from rclpy.experimental import EventsExecutor
-from robotica_kin.bounds import bounded, MAX_LATITUDE, MAX_LONGITUDE, MAX_SPEED, MAX_TIME_JUMP
+from robotica_kin.bounds import (bounded, MAX_ANGULAR_RATE, MAX_LATITUDE, MAX_LONGITUDE, MAX_SPEED,
+                                 MAX_TIME_JUMP)
 from robotica_kin.geodetic import GeodeticOrigin
 from robotica_kin.mobile.ekf_localization import OdometryNoise
 from robotica_kin.mobile.odometry import ODOMETRY_METHODS
@@ -147,10 +149,12 @@ class OdometryNode(GuardedNode):
 
     # -- inputs ------------------------------------------------------------------------------
     def _on_gyro(self, msg: Imu) -> None:
-        try:
-            new = self._fusion.add_gyro(stamp_to_seconds(msg.header.stamp),
-                                        msg.angular_velocity.z,
-                                        msg.angular_velocity_covariance[8])
+        try:   # one absurd rate or variance (1e200) made the covariance inf for good
+            new = self._fusion.add_gyro(
+                stamp_to_seconds(msg.header.stamp),
+                bounded('gyro rate', msg.angular_velocity.z, MAX_ANGULAR_RATE),
+                bounded('gyro rate variance', msg.angular_velocity_covariance[8],
+                        MAX_ANGULAR_RATE ** 2))
         except ValueError as err:
             self.get_logger().warn(f'gyro reading ignored: {err}', throttle_duration_sec=5.0)
             return

@@ -23,7 +23,10 @@ Pacing (DESIGN.md, time and recording):
   topic counts once a publisher of it is matched; a lockstep run starts once every followed topic
   has one (at most ``lockstep.start_timeout``), so that no follower is discovered mid-run. They
   are subscribed transient-local: discovery is not symmetric, and a gyro emulator's writer once
-  matched the simulator's reader 1 s after the reader had matched it.
+  matched the simulator's reader 1 s after the reader had matched it. A follower answers the
+  steps published, so a stamp ahead of the simulated time (by more than a step) or malformed
+  (``nanosec`` >= 1e9) is not from this run: it is refused (logged by the guard, no brake), else
+  one stamp of 2**31 - 1 made the topic count as caught up for the rest of the run.
 
 At ``end_time`` the node publishes a final status and exits with code 0.
 """
@@ -35,7 +38,7 @@ import time
 from rclpy.clock import Clock as WallClock, ClockType
 from rclpy.duration import Duration
 from rclpy.executors import Executor
-from robotica_kin.ros.convert import seconds_to_stamp
+from robotica_kin.ros.convert import seconds, seconds_to_stamp
 from robotica_kin.ros.guarded import GuardedNode
 from robotica_kin.ros.parameters import declare
 from robotica_kin.ros.qos import STREAM_PUB_QOS, STREAM_REPLAY_SUB_QOS
@@ -56,7 +59,7 @@ def header_stamp(data: bytes) -> float:
     stamp's ``int32 sec`` and ``uint32 nanosec`` follow it.
     """
     sec, nanosec = struct.unpack_from('<iI' if data[1] == 1 else '>iI', data, 4)
-    return sec + nanosec * 1e-9
+    return seconds(sec, nanosec)
 
 
 class SteppedSimulatorNode(GuardedNode):
@@ -151,10 +154,14 @@ class SteppedSimulatorNode(GuardedNode):
                 continue
 
             def newest(data: bytes, topic: str = topic) -> None:
-                self._followed[topic] = max(self._followed[topic], header_stamp(data))
+                stamp = header_stamp(data)
+                if stamp > self.sim_time + self.step_period + 1e-9:
+                    raise ValueError(f'stamp {stamp!r} s is ahead of the simulated time '
+                                     f'{self.sim_time!r} s: not an answer to this run')
+                self._followed[topic] = max(self._followed[topic], stamp)
             self._followed[topic] = 0.0
             self._follow_subscriptions[topic] = self.create_subscription(
-                msg_class, topic, newest, STREAM_REPLAY_SUB_QOS, raw=True)
+                msg_class, topic, newest, STREAM_REPLAY_SUB_QOS, raw=True, safe_output=False)
         if len(self._follow_subscriptions) == len(self._follow_topics):
             self._follow_timer.cancel()
 

@@ -9,20 +9,33 @@ normally afterwards.
 """
 import random
 import signal
+import time
 
-from geometry_msgs.msg import Twist
-from nav_msgs.msg import Odometry
+from geometry_msgs.msg import Twist, Vector3
+from nav_msgs.msg import Odometry, Path
 import pytest
+from rcl_interfaces.msg import Log
+from rclpy.qos import DurabilityPolicy, QoSProfile
+from robotica_kin.ros.convert import seconds_to_stamp
 from robotica_kin.ros.hostile import fuzz
-from robotica_msgs.msg import VehicleCommand, WheelEncoders
-from sensor_msgs.msg import Imu, JointState, NavSatFix
+from robotica_msgs.msg import (JointControllerState, SimulatorStatus, TrackingError,
+                               VehicleCommand, WheelEncoders)
+from robotica_sim.bags.info import bag_info
+from robotica_sim.runs.plan import (ARM_RECORDED_TOPICS, CONTROLLER_STATE_TOPIC, RECORDED_TOPICS,
+                                    SENSOR_TOPICS, STATUS_TOPIC, TRACKING_ERROR_TOPIC,
+                                    TRAJECTORY_TOPIC)
+from rosbags.highlevel import AnyReader
+from rosgraph_msgs.msg import Clock
+from sensor_msgs.msg import Imu, JointState, MagneticField, NavSatFix
 from std_msgs.msg import Float64MultiArray
+from trajectory_msgs.msg import JointTrajectory
 
 pytestmark = pytest.mark.ros
+LATCHED = QoSProfile(depth=10, durability=DurabilityPolicy.TRANSIENT_LOCAL)
 
 
 def _stamped(msg, t):
-    msg.header.stamp.sec, msg.header.stamp.nanosec = int(t), round((t - int(t)) * 1e9)
+    msg.header.stamp = seconds_to_stamp(t)
     return msg
 
 
@@ -61,6 +74,12 @@ def _wheels(t):
                                position=[5.0 * t, 5.0 * t], velocity=[5.0, 5.0]), t)
 
 
+def _gyro(t):
+    msg = _stamped(Imu(), t)
+    msg.angular_velocity_covariance[8] = 1e-4
+    return msg
+
+
 def _ticks(t):
     return _stamped(WheelEncoders(left_ticks=int(1000 * t), right_ticks=int(1000 * t),
                                   ticks_per_revolution=1000), t)
@@ -88,6 +107,10 @@ CASES = {
         {'wheel_encoders': (WheelEncoders, _ticks), 'gps/fix': (NavSatFix, _fix),
          'compass/heading': (Imu, _heading)},
         {'odom': (Odometry, ())}, 'odom', lambda m: m.header.stamp.sec >= 100),
+    'odometry_gyro': (
+        ['-p', 'heading_source:=gyro'],
+        {'wheel_encoders': (WheelEncoders, _ticks), 'imu/data': (Imu, _gyro)},
+        {'odom': (Odometry, ())}, 'odom', lambda m: m.header.stamp.sec >= 100),
     'encoder_emulator': ([], {'joint_states': (JointState, _wheels)},
                          {'wheel_encoders': (WheelEncoders, ())}, 'wheel_encoders',
                          lambda m: m.header.stamp.sec >= 100),
@@ -100,13 +123,15 @@ CASES = {
                      'gps/fix', lambda m: m.header.stamp.sec >= 100),
 }
 
+NODES = {'simulator_tricycle': 'simulator', 'odometry_gyro': 'odometry'}   # else the case's name
+
 
 @pytest.mark.parametrize('case', sorted(CASES))
 def test_hostile_messages_neither_kill_nor_poison_the_node(case, start_node, ros_node,
                                                            fuzz_survived):
     parameters, inputs, outputs, witness, recovered = CASES[case]
     node, executor = ros_node
-    proc = start_node('robotica_sim', case.split('_tricycle')[0], *parameters)
+    proc = start_node('robotica_sim', NODES.get(case, case), *parameters)
     received, ok = fuzz(node, executor, inputs, {t: m for t, (m, _) in outputs.items()},
                         lambda got: any(recovered(m) for m in got[witness][-20:]),
                         random.Random(f'{case}-16'))
@@ -128,3 +153,88 @@ def test_sigint_while_publishing_ends_cleanly(name, parameters, start_node, ros_
     assert proc.wait(timeout=15) == 0
     text = read_output(proc)
     assert 'Traceback' not in text and 'context is invalid' not in text, text
+
+
+def test_hostile_followed_stamps_neither_advance_nor_wedge_the_lockstep(start_node, ros_node, spin,
+                                                                        fuzz_survived):
+    # The test is the controller (cmd_vel) and the follower (/odom, stamped with the newest
+    # ground truth) of a lockstep simulator; the follower's topic also gets hostile messages.
+    node, executor = ros_node
+    proc = start_node('robotica_sim', 'simulator', '-p', 'pacing:=lockstep',
+                      '-p', "lockstep.follow_topics:=['/odom']", '-p', 'lockstep.timeout:=0.1',
+                      '-p', 'lockstep.max_lag:=0.1', '-p', 'status_period:=0.1')
+    truth = []
+    node.create_subscription(Odometry, 'ground_truth/odom', truth.append, 1000)
+
+    def follow(t):
+        msg = Odometry()
+        if truth:
+            msg.header.stamp = truth[-1].header.stamp
+        return msg
+
+    def steady(got):   # five statuses (0.4 s simulated) without a timeout, the command applied
+        status = got['/simulator/status'][-5:]
+        return (len(status) == 5 and len({s.lockstep_timeouts for s in status}) == 1
+                and got['ground_truth/odom'][-1].twist.twist.linear.x == pytest.approx(0.5))
+
+    received, ok = fuzz(node, executor, {'cmd_vel': (Twist, _twist), '/odom': (Odometry, follow)},
+                        {'ground_truth/odom': Odometry, '/simulator/status': SimulatorStatus},
+                        steady, random.Random('lockstep-follow-16'))
+    fuzz_survived(proc, received, ok)
+    # Not advanced: with the follower silent (the controller still answering), steps wait for
+    # it again. A hostile stamp taken as the follower's newest (2**31 - 1) let it run on.
+    status = received['/simulator/status']
+    before = status[-1].lockstep_timeouts
+    cmd = node.create_publisher(Twist, 'cmd_vel', 10)
+    deadline = time.monotonic() + 10.0
+    while status[-1].lockstep_timeouts < before + 3 and time.monotonic() < deadline:
+        cmd.publish(_twist(0.0))
+        spin(executor, lambda: False, 0.02)
+    assert status[-1].lockstep_timeouts >= before + 3, (before, status[-1])
+
+
+# Every topic a run records (robotica_sim.runs.plan), with its type.
+RECORDED = {'/clock': Clock, '/cmd_vel': Twist, '/vehicle_command': VehicleCommand,
+            '/odom': Odometry, '/ground_truth/odom': Odometry, '/joint_states': JointState,
+            '/wheel_encoders': WheelEncoders, '/path': Path, TRACKING_ERROR_TOPIC: TrackingError,
+            STATUS_TOPIC: SimulatorStatus, '/rosout': Log, '/imu/data': Imu,
+            '/compass/heading': Imu, '/compass/magnetic_field': MagneticField,
+            '/gps/fix': NavSatFix, '/joint_torques': Float64MultiArray,
+            CONTROLLER_STATE_TOPIC: JointControllerState, TRAJECTORY_TOPIC: JointTrajectory}
+
+
+def _default(msg_type):
+    def valid(t):
+        msg = msg_type()
+        if msg_type is Clock:
+            msg.clock = seconds_to_stamp(t)
+        elif hasattr(msg, 'header'):
+            msg.header.stamp = seconds_to_stamp(t)
+        return msg
+    return valid
+
+
+def test_hostile_messages_of_every_recorded_type_leave_a_readable_bag(start_node, ros_node, spin,
+                                                                      fuzz_survived, tmp_path):
+    node, executor = ros_node
+    assert set(RECORDED) >= set(RECORDED_TOPICS + ARM_RECORDED_TOPICS).union(
+        *SENSOR_TOPICS.values())
+    out = tmp_path / 'bag'
+    proc = start_node('robotica_sim', 'recorder', '-p', f'output:={out}',
+                      '-p', f'topics:={list(RECORDED)}', '-p', 'use_sim_time:=true')
+    received, ok = fuzz(node, executor, {t: (m, _default(m)) for t, m in RECORDED.items()}, {},
+                        lambda got: True, random.Random('recorder-16'), count=40)
+    fuzz_survived(proc, received, ok)
+    marker = node.create_publisher(Twist, '/cmd_vel', LATCHED)   # as the recorder subscribed
+    assert spin(executor, lambda: marker.get_subscription_count() > 0)
+    for _ in range(5):
+        marker.publish(Twist(linear=Vector3(x=42.0)))
+        spin(executor, lambda: False, 0.05)
+    proc.send_signal(signal.SIGINT)
+    assert proc.wait(timeout=30) == 0
+    info = bag_info(out)
+    with AnyReader([out]) as reader:
+        messages = [(c.topic, reader.deserialize(raw, c.msgtype))
+                    for c, _, raw in reader.messages()]
+    assert len(messages) == info.message_count > len(RECORDED) * 40 // 2
+    assert [m for topic, m in messages if topic == '/cmd_vel' and m.linear.x == 42.0]
