@@ -34,7 +34,7 @@ profile reads neither the pose nor the path. Frames are REP-103: x forward, y le
 x axis, lateral errors > 0 left of the path.
 """
 
-from dataclasses import dataclass
+from dataclasses import replace
 import math
 from typing import Any, Callable, Mapping
 
@@ -52,29 +52,15 @@ from robotica_ctrl.mobile.tracker_base import replace_gains, TrackingLaw
 from robotica_ctrl.mobile.trajectory_tracking import (LAWS as TRAJECTORY_LAWS,
                                                       TrajectoryTracker,
                                                       TrajectoryTrackingParams)
+from robotica_kin.mobile.vehicles import GEOMETRY_PARAMETERS
+from robotica_kin.parameter_specs import check_parameters, ParameterSpec
 
-__all__ = ['LAWS', 'LAW_PARAMETERS', 'LawParameter', 'law_defaults', 'make_law',
-           'steering_angle']
+__all__ = ['COMMAND_TYPES', 'LAWS', 'LAW_PARAMETERS', 'POSE_SOURCES', 'TRACKER_PARAMETERS',
+           'check_gains', 'law_defaults', 'make_law', 'steering_angle']
 
 LAWS = ('pure_pursuit', 'adaptive_pure_pursuit', 'quintic', 'trajectory_tracking', 'frenet',
         'gpc')
 """The laws that close the loop on the pose; :data:`LAW_PARAMETERS` also holds ``open_loop``."""
-
-
-@dataclass(frozen=True)
-class LawParameter:
-    """
-    One tunable of a law: default, description with unit and book symbol, range or choices.
-
-    ``low``/``high`` bound a number (inclusive); ``choices`` list the values of a string; a
-    tuple default is a list of numbers.
-    """
-
-    default: float | int | str | tuple[float, ...]
-    description: str
-    low: float | None = None
-    high: float | None = None
-    choices: tuple[str, ...] = ()
 
 
 _TRACKING = {   # the path-end and search tunables every path law shares
@@ -164,21 +150,21 @@ _OPEN_LOOP = {
 
 def _specs(defaults: Any, numbers: dict[str, tuple[str, float, float]],
            strings: dict[str, tuple[str, tuple[str, ...]]] | None = None,
-           overrides: dict[str, float | int | str] | None = None) -> dict[str, LawParameter]:
+           overrides: dict[str, float | int | str] | None = None) -> dict[str, ParameterSpec]:
     """Return the parameter specs of a law, defaults from its params dataclass ``defaults``."""
     overrides = overrides or {}
 
     def default(name: str) -> Any:
         return overrides[name] if name in overrides else getattr(defaults, name)
 
-    specs = {name: LawParameter(default(name), description, choices=choices)
+    specs = {name: ParameterSpec(default(name), description, choices=choices)
              for name, (description, choices) in (strings or {}).items()}
     for name, (description, low, high) in numbers.items():
-        specs[name] = LawParameter(default(name), description, low, high)
+        specs[name] = ParameterSpec(default(name), description, low, high)
     return specs
 
 
-LAW_PARAMETERS: dict[str, dict[str, LawParameter]] = {
+LAW_PARAMETERS: dict[str, dict[str, ParameterSpec]] = {
     'pure_pursuit': _specs(PurePursuitParams(), _PURE_PURSUIT),
     'adaptive_pure_pursuit': _specs(
         PurePursuitParams(), {k: v for k, v in _PURE_PURSUIT.items()
@@ -201,10 +187,30 @@ LAW_PARAMETERS: dict[str, dict[str, LawParameter]] = {
     # reached 48 rad/s at 0.5 m/s in the tracking benchmark.
     'gpc': _specs(GpcTrackerParams(), _GPC, overrides={'max_curvature': 2.0,
                                                        'model_speed_tolerance': 0.1}),
-    'open_loop': {name: LawParameter((0.0,), description)   # standing still
+    'open_loop': {name: ParameterSpec((0.0,), description)   # standing still
                   for name, description in _OPEN_LOOP.items()},
 }
 """Every law :func:`make_law` builds (:data:`LAWS` and ``open_loop``): its parameters by name."""
+
+POSE_SOURCES = ('odom', 'ground_truth')
+COMMAND_TYPES = ('twist', 'steering')
+TRACKER_PARAMETERS: dict[str, ParameterSpec] = {
+    'law': ParameterSpec('pure_pursuit', 'Tracking law', choices=tuple(LAW_PARAMETERS)),
+    'command_type': ParameterSpec('twist', 'Command: cmd_vel Twist, or vehicle_command '
+                                  'VehicleCommand for steered vehicles', choices=COMMAND_TYPES),
+    'wheelbase': replace(GEOMETRY_PARAMETERS['wheelbase'], description=(
+        'Wheelbase l [m] of a steered vehicle (command_type steering)')),
+    'pose_source': ParameterSpec('odom', 'Pose the law reads (odom: the estimate; '
+                                 'ground_truth: the truth of the simulator, ground_truth/odom)',
+                                 choices=POSE_SOURCES),
+    'max_cross_track': ParameterSpec(5.0, 'Farther than this from the path [m] the robot is '
+                                     'lost: stop', 1e-3, 1e6),
+    'control_rate': ParameterSpec(0.0, 'Control rate [Hz]; 0: once per pose message',
+                                  0.0, 1000.0),
+    'pose_timeout': ParameterSpec(0.5, 'With control_rate > 0, a pose older than this [s] '
+                                  'stops the robot', 1e-3, 60.0),
+}
+"""The path tracker's own parameters (not a law's gains): ranges and choices."""
 
 _BUILDERS: dict[str, Callable[[PolylinePath, Mapping[str, Any], ArrayLike | None,
                                ArrayLike | None], TrackingLaw]] = {
@@ -248,7 +254,7 @@ def steering_angle(linear: float, angular: float, wheelbase: float) -> float:
     return math.atan(wheelbase * angular / linear) if linear != 0.0 else 0.0
 
 
-def _law_specs(law: str) -> dict[str, LawParameter]:
+def _law_specs(law: str) -> dict[str, ParameterSpec]:
     if law not in LAW_PARAMETERS:
         raise ValueError(f'law must be one of {tuple(LAW_PARAMETERS)}, got {law!r}')
     return LAW_PARAMETERS[law]
@@ -290,3 +296,26 @@ def make_law(law: str, path: PolylinePath, gains: Mapping[str, Any] | None = Non
         raise ValueError(f'{law} has no gain {sorted(unknown)}; its gains: {sorted(specs)}')
     merged = {**law_defaults(law), **(gains or {})}
     return _BUILDERS[law](path, merged, times, stations)
+
+
+def check_gains(law: str, gains: Mapping[str, Any]) -> None:
+    """
+    Check the gains of ``law`` as the path tracker does at start-up and on every change.
+
+    Each gain against its range or choices (:data:`LAW_PARAMETERS`), then together by the law
+    itself (:func:`make_law` on a straight path: e.g. ``min_lookahead <= max_lookahead``).
+
+    Raises
+    ------
+    robotica_kin.parameter_specs.ParameterError
+        For a gain out of its range or choices (``name`` is the gain's).
+    ValueError
+        For an unknown law or gain, or gains the law refuses together.
+
+    Examples
+    --------
+    >>> check_gains('pure_pursuit', {'lookahead_distance': 1.0})
+
+    """
+    check_parameters(_law_specs(law), gains)
+    make_law(law, PolylinePath([[0.0, 0.0], [1.0, 0.0]]), gains)

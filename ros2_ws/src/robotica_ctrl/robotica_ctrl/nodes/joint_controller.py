@@ -25,44 +25,24 @@ joints beyond the physical bounds of :mod:`robotica_kin.bounds`, is not answered
 then brakes on its stale command) and the reason is logged; so is a state whose torques come
 out non-finite (the guard of :mod:`robotica_kin.ros.guarded` does not publish them).
 """
-import math
-
 import numpy as np
 from rclpy.experimental import EventsExecutor
-from robotica_ctrl.joint_control import (ComputedTorque, ComputedTorqueGains, DecoupledPID,
-                                         JointControlLaw, JointReference, JointState, PIDGains)
+from robotica_ctrl.joint_control import JointControlLaw, JointReference, JointState
+from robotica_ctrl.joint_control.control_laws import (JOINT_LAW_PARAMETERS, JOINT_LAWS,
+                                                      make_joint_law)
 from robotica_ctrl.trajectory.sampled_trajectory import SampledTrajectory
 from robotica_kin.bounds import bounded_array, MAX_JOINT_POSITION, MAX_JOINT_VELOCITY
 from robotica_kin.ros.convert import seconds_to_stamp, stamp_to_seconds
 from robotica_kin.ros.dh_messages import declare_robot
 from robotica_kin.ros.entry_point import run_node
 from robotica_kin.ros.guarded import GuardedNode
-from robotica_kin.ros.parameters import declare
+from robotica_kin.ros.parameters import declare, declare_specs
 from robotica_kin.ros.qos import (COMMAND_PUB_QOS, INPUT_QOS_OVERRIDES, LATCHED_QOS,
                                   STREAM_PUB_QOS, STREAM_SUB_QOS)
 from robotica_msgs.msg import JointControllerState
 from sensor_msgs.msg import JointState as JointStateMsg
 from std_msgs.msg import Float64MultiArray
 from trajectory_msgs.msg import JointTrajectory
-
-LAWS = ('pid', 'computed_torque')
-GAINS = {
-    'pid': {'kp': ([25.0], 'K_p [N m/rad] per joint (one value: all joints), book (8.10)'),
-            'kv': ([10.0], 'K_v [N m s/rad] per joint'),
-            'ki': ([0.0], 'K_i [N m/(rad s)] per joint'),
-            'tau_max': ([math.inf], 'Torque saturation [N m] per joint, > 0'),
-            'integral_max': ([math.inf], 'Clamp of the error integral [rad s] (anti-windup)'),
-            'derivative_time_constant': ([0.0], "T_f [s] of the low-pass filter of e'; 0: none")},
-    'computed_torque': {
-        'kp': ([25.0], 'K_p [1/s^2] per joint, book (8.30); omega_n = sqrt(K_p) (8.22)'),
-        'kv': ([10.0], 'K_v [1/s] per joint; damping K_v / (2 sqrt(K_p)) (8.23)'),
-        'ki': ([0.0], 'K_i [1/s^3] per joint, PID variant (8.36)'),
-        'integral_max': ([math.inf], 'Clamp of the error integral [rad s] (anti-windup)')},
-}
-
-
-def _gain(values: list[float]) -> float | np.ndarray:
-    return values[0] if len(values) == 1 else np.array(values)
 
 
 class JointControllerNode(GuardedNode):
@@ -71,9 +51,7 @@ class JointControllerNode(GuardedNode):
     def __init__(self) -> None:
         super().__init__('joint_controller')
         self._law_name = declare(self, 'law', 'computed_torque',
-                                 f'Control law: one of {LAWS}', read_only=True)
-        if self._law_name not in LAWS:
-            raise ValueError(f'law must be one of {LAWS}, got {self._law_name!r}')
+                                 f'Control law: one of {JOINT_LAWS}', read_only=True)
         self._robot = declare_robot(self, "The controller's model", dynamics=True,
                                     joint_names='the order of states and torques')
         grav = declare(self, 'gravity', [0.0, 0.0, -9.81],
@@ -85,15 +63,12 @@ class JointControllerNode(GuardedNode):
         self._first_period = declare(self, 'first_period', 1e-3,
                                      'dt [s] of the first step (no previous state yet)',
                                      low=1e-6, high=1.0, read_only=True)
-        gains = {name: _gain(declare(self, f'{self._law_name}.{name}', default, description,
-                                     read_only=True))
-                 for name, (default, description) in GAINS[self._law_name].items()}
-        self._law: JointControlLaw
-        if self._law_name == 'pid':
-            self._law = DecoupledPID(PIDGains(**gains))
-        else:
-            self._law = ComputedTorque(self._robot, ComputedTorqueGains(**gains), grav,
-                                       use_friction=use_friction)
+        prefix = f'{self._law_name}.'
+        gains = {name.removeprefix(prefix): value for name, value in declare_specs(
+            self, {prefix + k: v for k, v in JOINT_LAW_PARAMETERS.get(self._law_name, {}).items()}
+        ).items()}   # an unknown law has none: make_joint_law refuses it
+        self._law: JointControlLaw = make_joint_law(self._law_name, self._robot, gains, grav,
+                                                    use_friction=use_friction)
         self._names = list(self._robot.joint_names)
         self._trajectory: SampledTrajectory | None = None
         self._trajectory_start: float | None = None

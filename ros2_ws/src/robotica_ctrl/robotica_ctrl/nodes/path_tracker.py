@@ -38,17 +38,18 @@ from rcl_interfaces.msg import SetParametersResult
 from rclpy.experimental import EventsExecutor
 from robotica_ctrl.mobile.path import PolylinePath
 from robotica_ctrl.mobile.tracker_base import TrackingLaw
-from robotica_ctrl.mobile.tracking_laws import LAW_PARAMETERS, make_law, steering_angle
+from robotica_ctrl.mobile.tracking_laws import (check_gains, LAW_PARAMETERS, make_law,
+                                                steering_angle, TRACKER_PARAMETERS)
+from robotica_kin.parameter_specs import check_parameters, ParameterError
 from robotica_kin.ros.convert import path_points, pose2d_from_odometry, stamp_to_seconds
 from robotica_kin.ros.entry_point import run_node
 from robotica_kin.ros.guarded import GuardedNode
-from robotica_kin.ros.parameters import declare
+from robotica_kin.ros.parameters import declare_specs
 from robotica_kin.ros.qos import (COMMAND_PUB_QOS, INPUT_QOS_OVERRIDES, LATCHED_QOS,
                                   STREAM_PUB_QOS, STREAM_SUB_QOS)
 from robotica_msgs.msg import TrackingError, VehicleCommand
 
-COMMAND_TYPES = ('twist', 'steering')
-POSE_SOURCES = {'odom': 'odom', 'ground_truth': 'ground_truth/odom'}
+POSE_TOPICS = {'odom': 'odom', 'ground_truth': 'ground_truth/odom'}   # by pose_source
 
 
 class PathTrackerNode(GuardedNode):
@@ -56,42 +57,25 @@ class PathTrackerNode(GuardedNode):
 
     def __init__(self) -> None:
         super().__init__('path_tracker')
-        self._law_name = declare(self, 'law', 'pure_pursuit', f'Tracking law: one of '
-                                 f'{tuple(LAW_PARAMETERS)}', read_only=True)
-        if self._law_name not in LAW_PARAMETERS:
-            raise ValueError(f'law must be one of {tuple(LAW_PARAMETERS)}, got '
-                             f'{self._law_name!r}')
-        self._gains = self._declare_gains(self._law_name)
-        # Refuse bad gains at start-up, not at the first path.
-        make_law(self._law_name, PolylinePath([[0.0, 0.0], [1.0, 0.0]]), self._gains)
-        self._command_type = declare(self, 'command_type', 'twist',
-                                     f'Command: one of {COMMAND_TYPES} (cmd_vel Twist, or '
-                                     'vehicle_command VehicleCommand for steered vehicles)',
-                                     read_only=True)
-        if self._command_type not in COMMAND_TYPES:
-            raise ValueError(f'command_type must be one of {COMMAND_TYPES}, got '
-                             f'{self._command_type!r}')
-        self._wheelbase = declare(self, 'wheelbase', 0.5,
-                                  'Wheelbase l [m] of a steered vehicle (command_type steering)',
-                                  low=1e-3, high=100.0, read_only=True)
-        pose_source = declare(self, 'pose_source', 'odom',
-                              f'Pose the law reads: one of {tuple(POSE_SOURCES)} (odom: the '
-                              'estimate; ground_truth: the truth of the simulator, '
-                              'ground_truth/odom)',
-                              read_only=True)
-        if pose_source not in POSE_SOURCES:
-            raise ValueError(f'pose_source must be one of {tuple(POSE_SOURCES)}, got '
-                             f'{pose_source!r}')
+        specs = TRACKER_PARAMETERS
+        params = {**declare_specs(self, {k: spec for k, spec in specs.items()
+                                         if k != 'max_cross_track'}),
+                  **declare_specs(self, {'max_cross_track': specs['max_cross_track']},
+                                  read_only=False)}
+        check_parameters(specs, params)   # the choices
+        self._law_name = params['law']
+        prefix = f'{self._law_name}.'
+        self._gains = {name.removeprefix(prefix): value for name, value in declare_specs(
+            self, {prefix + k: v for k, v in LAW_PARAMETERS[self._law_name].items()},
+            read_only=False).items()}
+        check_gains(self._law_name, self._gains)   # refused at start-up, not at the first path
+        self._command_type = params['command_type']
+        self._wheelbase = params['wheelbase']
+        pose_source = params['pose_source']
         self._ground_truth = pose_source == 'ground_truth'
-        self._max_cross_track = declare(self, 'max_cross_track', 5.0,
-                                        'Farther than this from the path [m] the robot is '
-                                        'lost: stop', low=1e-3, high=1e6)
-        self._control_rate = declare(self, 'control_rate', 0.0,
-                                     'Control rate [Hz]; 0: once per pose message',
-                                     low=0.0, high=1000.0, read_only=True)
-        self._pose_timeout = declare(self, 'pose_timeout', 0.5,
-                                     'With control_rate > 0, a pose older than this [s] stops '
-                                     'the robot', low=1e-3, high=60.0, read_only=True)
+        self._max_cross_track = params['max_cross_track']
+        self._control_rate = params['control_rate']
+        self._pose_timeout = params['pose_timeout']
         self.add_on_set_parameters_callback(self._validate_parameters)
         self.add_post_set_parameters_callback(self._apply_parameters)
 
@@ -107,28 +91,14 @@ class PathTrackerNode(GuardedNode):
         self._error_pub = self.create_publisher(TrackingError, '~/tracking_error',
                                                 STREAM_PUB_QOS)
         self.create_subscription(Path, '~/path', self._on_path, LATCHED_QOS)
-        self.create_subscription(Odometry, POSE_SOURCES[pose_source], self._on_odom,
+        self.create_subscription(Odometry, POSE_TOPICS[pose_source], self._on_odom,
                                  STREAM_SUB_QOS, qos_overriding_options=INPUT_QOS_OVERRIDES)
         if self._control_rate > 0.0:
             self.create_timer(1.0 / self._control_rate, self._on_timer)
         self.get_logger().info(f'law {self._law_name}, pose from '
-                               f'{POSE_SOURCES[pose_source]}, command {self._command_type}')
+                               f'{POSE_TOPICS[pose_source]}, command {self._command_type}')
 
     # -- parameters --------------------------------------------------------------------------
-    def _declare_gains(self, law: str) -> dict:
-        """Declare the parameters ``<law>.<gain>`` of the chosen law; return their values."""
-        gains = {}
-        for name, spec in LAW_PARAMETERS[law].items():
-            description = spec.description
-            if spec.choices:
-                description += f': one of {spec.choices}'
-            gains[name] = declare(self, f'{law}.{name}', spec.default, description,
-                                  low=spec.low, high=spec.high)
-            if spec.choices and gains[name] not in spec.choices:
-                raise ValueError(f'{law}.{name} must be one of {spec.choices}, got '
-                                 f'{gains[name]!r}')
-        return gains
-
     def _changes(self, parameters) -> dict:
         prefix = self._law_name + '.'
         return {p.name.removeprefix(prefix): p.value for p in parameters
@@ -137,17 +107,12 @@ class PathTrackerNode(GuardedNode):
     def _validate_parameters(self, parameters) -> SetParametersResult:
         changes = self._changes(parameters)
         if changes:
-            specs = LAW_PARAMETERS[self._law_name]
-            for name, value in changes.items():
-                if specs[name].choices and value not in specs[name].choices:
-                    return SetParametersResult(successful=False, reason=(
-                        f'{self._law_name}.{name} must be one of {specs[name].choices}, got '
-                        f'{value!r}'))
-            try:   # the law's own checks, on a throw-away copy
-                make_law(self._law_name, PolylinePath([[0.0, 0.0], [1.0, 0.0]]),
-                         {**self._gains, **changes})
+            try:   # the ranges and the law's own checks, on a throw-away copy
+                check_gains(self._law_name, {**self._gains, **changes})
             except (ValueError, TypeError) as err:
-                return SetParametersResult(successful=False, reason=str(err))
+                named = isinstance(err, ParameterError)   # a gain's name: give the parameter's
+                return SetParametersResult(successful=False, reason=(
+                    f'{self._law_name}.{err}' if named else str(err)))
         return SetParametersResult(successful=True)
 
     def _apply_parameters(self, parameters) -> None:

@@ -122,6 +122,7 @@ def test_a_trajectory_without_our_joints_is_refused(start_node, ros_node, spin, 
     (('-p', 'law:=lqr'), 'law must be one of'),
     (('-p', 'robot:=planar_rr'), 'no dynamic parameters'),
     (('-p', 'first_period:=0.0'), 'first_period'),
+    (('-p', 'law:=pid', '-p', 'pid.kp:=[1.0, 2.0]'), 'kp must be a scalar or have shape (6,)'),
 ])
 def test_bad_parameters_are_refused(start_node, read_output, arguments, reason):
     proc = start_node('robotica_ctrl', 'joint_controller', *arguments)

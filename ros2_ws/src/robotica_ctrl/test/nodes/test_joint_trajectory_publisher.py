@@ -60,6 +60,7 @@ def test_sine_for_two_joints(start_node, ros_node, spin):
     (('-p', 'generator:=sine'), 'joint_names must name'),
     (('-p', 'joint_names:=[a, b]', '-p', 'generator:=pol3', '-p', 'via.positions:=[0.0, 1.0, 2.0]',
       '-p', 'via.segment_durations:=[1.0]'), 'via.positions must hold points x 2'),
+    (('-p', 'joint_names:=[a]', '-p', 'sine.period:=[0.0]'), 'sine.period must be > 0 s'),
 ])
 def test_bad_parameters_are_refused(start_node, read_output, arguments, reason):
     proc = start_node('robotica_ctrl', 'joint_trajectory_publisher', *arguments)

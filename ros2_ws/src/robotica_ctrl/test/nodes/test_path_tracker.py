@@ -173,3 +173,9 @@ def test_frenet_law_on_ground_truth_and_lost_path_stop(start_node, ros_node, spi
     text = read_output(proc)
     assert 'path lost' in text and 'taken as the path frame' in text
     assert proc.poll() is None
+
+
+def test_unknown_pose_source_is_refused(start_node, read_output):
+    proc = start_node('robotica_ctrl', 'path_tracker', '-p', 'pose_source:=bogus')
+    assert proc.wait(timeout=30) == 2
+    assert "pose_source must be one of ('odom', 'ground_truth')" in read_output(proc)

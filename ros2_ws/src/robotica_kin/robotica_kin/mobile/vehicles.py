@@ -43,10 +43,11 @@ from robotica_kin.mobile.omnidirectional import (
     OmniThreeParams)
 from robotica_kin.mobile.skid_steer import skid_steer_direct, skid_steer_inverse, SkidSteerParams
 from robotica_kin.mobile.unicycle import _vector
+from robotica_kin.parameter_specs import ParameterSpec
 from robotica_kin.types import Vector
 
-__all__ = ['STEERED_TYPES', 'VEHICLE_TYPES', 'VehicleGeometry', 'VehicleKinematics', 'as_command',
-           'vehicle_kinematics']
+__all__ = ['GEOMETRY_PARAMETERS', 'STEERED_TYPES', 'VEHICLE_TYPES', 'VehicleGeometry',
+           'VehicleKinematics', 'as_command', 'vehicle_kinematics']
 
 VEHICLE_TYPES = ('differential', 'synchronous', 'skid_steer', 'omni_three', 'mecanum',
                  'tricycle', 'bicycle', 'ackermann')
@@ -82,6 +83,23 @@ class VehicleGeometry:
                              f'{self.max_steering_angle!r}')
         if not (math.isfinite(self.icr_scale) and self.icr_scale >= 1.0):
             raise ValueError(f'icr_scale must be finite and >= 1, got {self.icr_scale!r}')
+
+
+GEOMETRY_PARAMETERS: dict[str, ParameterSpec] = {
+    'wheel_radius': ParameterSpec(0.1, 'Wheel radius c [m], book (4.109)', 1e-3, 10.0),
+    'track': ParameterSpec(0.4, 'Track b between the left and right wheels of an axle [m], '
+                           'book (4.110)', 1e-3, 100.0),
+    'wheelbase': ParameterSpec(0.5, 'Wheelbase l, rear to front axle [m] (steered vehicles), '
+                               'book (4.117)', 1e-3, 100.0),
+    'base_radius': ParameterSpec(0.2, 'Centre-to-wheel distance [m] (omni_three)', 1e-3, 100.0),
+    'half_length': ParameterSpec(0.2, 'Centre-to-axle distance [m] (mecanum)', 1e-3, 100.0),
+    'max_steering_angle': ParameterSpec(1.2, 'Steering angle limit |alpha| [rad] (steered '
+                                        'vehicles)', 1e-3, 1.57),
+    'icr_scale': ParameterSpec(1.0, 'Skid steer: effective track / track (>= 1; 1 = no lateral '
+                               'skid)', 1.0, 10.0),
+}
+"""The fields of :class:`VehicleGeometry` as a simulator's parameters: what a simulated vehicle
+may be (its own checks allow any size; these bound the simulated ones)."""
 
 
 class VehicleKinematics(ABC):

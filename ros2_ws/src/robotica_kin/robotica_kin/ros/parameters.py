@@ -5,10 +5,11 @@ Every robotica node declares its parameters through :func:`declare`, so that eac
 ``ParameterDescriptor`` (description with unit and book symbol, range, read-only flag) and rclpy
 refuses an out-of-range value at start-up and at run time (STYLE.md §5).
 """
-from typing import Any, Optional
+from typing import Any, Mapping, Optional
 
 from rcl_interfaces.msg import FloatingPointRange, IntegerRange, ParameterDescriptor
 from rclpy.node import Node
+from robotica_kin.parameter_specs import ParameterSpec
 
 
 def declare(node: Node, name: str, default: Any, description: str, *,
@@ -29,3 +30,24 @@ def declare(node: Node, name: str, default: Any, description: str, *,
             descriptor.floating_point_range = [FloatingPointRange(from_value=float(low),
                                                                   to_value=float(high))]
     return node.declare_parameter(name, default, descriptor).value
+
+
+def declare_specs(node: Node, specs: Mapping[str, ParameterSpec], *,
+                  read_only: bool = True) -> dict[str, Any]:
+    """
+    Declare every parameter of ``specs`` (name -> spec) on ``node``; return their values.
+
+    Each with its spec's default, description (and choices) and range: the specs are the ones
+    a plan checks before the node starts (:mod:`robotica_kin.parameter_specs`). rclpy bounds
+    only a number, so the choices and the range of a list are left to the core function that
+    takes the values (through :func:`~robotica_kin.parameter_specs.parameter_values`).
+    """
+    values = {}
+    for name, spec in specs.items():
+        is_list = isinstance(spec.default, tuple)
+        values[name] = declare(
+            node, name, list(spec.default) if is_list else spec.default,
+            spec.description + (f': one of {spec.choices}' if spec.choices else ''),
+            low=None if is_list else spec.low, high=None if is_list else spec.high,
+            read_only=read_only)
+    return values

@@ -21,26 +21,15 @@ import numpy as np
 from rclpy.experimental import EventsExecutor
 from rclpy.parameter import Parameter
 from robotica_kin.bounds import bounded_array, MAX_FORCE_TORQUE
-from robotica_kin.dynamics import DEFAULT_GRAVITY
 from robotica_kin.ros.convert import seconds_to_stamp
 from robotica_kin.ros.dh_messages import declare_robot
 from robotica_kin.ros.entry_point import run_node
-from robotica_kin.ros.parameters import declare
+from robotica_kin.ros.parameters import declare, declare_specs
 from robotica_kin.ros.qos import COMMAND_QOS, STREAM_PUB_QOS
 from robotica_sim.nodes.stepped_simulator import SteppedSimulatorNode
-from robotica_sim.simulation.arm import ArmSimulation, ArmSimulationParams
+from robotica_sim.simulation.arm import arm_simulation, ARM_SIMULATOR_PARAMETERS
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64MultiArray
-
-
-def _per_joint(values: list[float] | None, n: int, name: str) -> tuple[float, ...]:
-    """Return () for no values, n values as given, or one value repeated n times."""
-    values = list(values or [])
-    if len(values) == 1:
-        values = values * n
-    if values and len(values) != n:
-        raise ValueError(f'{name} needs 1 or {n} values, got {len(values)}')
-    return tuple(float(v) for v in values)
 
 
 class ArmSimulatorNode(SteppedSimulatorNode):
@@ -52,46 +41,28 @@ class ArmSimulatorNode(SteppedSimulatorNode):
         self._robot = declare_robot(self, 'Built-in robot', dynamics=True,
                                     joint_names='in torque order', joint_limits=True)
         n = self._robot.n
-        q0 = declare(self, 'initial_positions', [0.0] * n, 'q(0) [rad | m]', read_only=True)
-        qd0 = declare(self, 'initial_velocities', [0.0] * n, "q'(0) [rad/s | m/s]",
-                      read_only=True)
-        params = ArmSimulationParams(
-            step_period=self.step_period,
-            gravity=tuple(declare(self, 'gravity', list(DEFAULT_GRAVITY),
-                                  'Gravity acceleration [m/s^2] in the base frame {0}',
-                                  read_only=True)),
-            tau_max=_per_joint(declare(self, 'tau_max', Parameter.Type.DOUBLE_ARRAY,
-                                       'Torque saturation [N m] (1 or n values); default none',
-                                       read_only=True), n, 'tau_max'),
-            unmodelled_viscous=_per_joint(
-                declare(self, 'unmodelled_viscous', Parameter.Type.DOUBLE_ARRAY,
-                        'Viscous friction [N m s] per joint unknown to the controller (App. A: '
-                        '0.1 on joint 1); default none', read_only=True), n,
-                'unmodelled_viscous'),
-            respect_limits=declare(self, 'respect_limits', True,
-                                   'Stop the joints at their limits', read_only=True))
-        self._payload_mass = declare(self, 'payload.mass', 0.0,
-                                     'Mass grasped at payload.time [kg]; 0: none (Ej. 8.4: 2)',
-                                     low=0.0, high=1e4, read_only=True)
-        self._payload_com = declare(self, 'payload.com', [0.0, 0.0, 0.0],
-                                    'Its position [m] in the last link frame {n}',
-                                    read_only=True)
-        self._payload_time = declare(self, 'payload.time', 0.0,
-                                     'Simulated time [s] of the grasp (Ej. 8.4: 10)', low=0.0,
-                                     high=1e7, read_only=True)
-        self._cmd_timeout = declare(self, 'cmd_timeout', 0.01,
-                                    'A command older than this [s, simulated] engages the brakes',
-                                    low=1e-4, high=60.0, read_only=True)
+        values = declare_specs(self, ARM_SIMULATOR_PARAMETERS)
+        for name, default, description in (
+                ('initial_positions', [0.0] * n, 'q(0) [rad | m]'),
+                ('initial_velocities', [0.0] * n, "q'(0) [rad/s | m/s]"),
+                ('tau_max', Parameter.Type.DOUBLE_ARRAY,
+                 'Torque saturation [N m] (1 or n values); default none'),
+                ('unmodelled_viscous', Parameter.Type.DOUBLE_ARRAY,
+                 'Viscous friction [N m s] per joint unknown to the controller (App. A: 0.1 on '
+                 'joint 1); default none')):
+            values[name] = declare(self, name, default, description, read_only=True)
+        self._sim = arm_simulation(self._robot, values, self.step_period)
+        self._payload_mass = values['payload.mass']
+        self._payload_com = values['payload.com']
+        self._payload_time = values['payload.time']
+        self._cmd_timeout = values['cmd_timeout']
         self._frame = declare(self, 'base_frame_id', 'link_0', 'frame_id of joint_states',
                               read_only=True)
-        self._sim = ArmSimulation(self._robot, params, q0, qd0)
         self._names = list(self._robot.joint_names)
         self._torque: np.ndarray | None = None
         self._torque_time = -np.inf
         self._braking = False
         self._payload_pending = self._payload_mass > 0.0
-        if len(self._payload_com) != 3 or not np.isfinite(self._payload_com).all():
-            raise ValueError(f'payload.com must be 3 finite values [m], got {self._payload_com}')
         self._joints_pub = self.create_publisher(JointState, 'joint_states', STREAM_PUB_QOS)
         self.create_subscription(Float64MultiArray, 'joint_torques', self._on_torques,
                                  COMMAND_QOS)

@@ -22,9 +22,10 @@ from rclpy.experimental import EventsExecutor
 from robotica_kin.ros.convert import quaternion_to_yaw, yaw_to_quaternion
 from robotica_kin.ros.entry_point import run_node
 from robotica_kin.ros.guarded import GuardedNode
-from robotica_kin.ros.parameters import declare
+from robotica_kin.ros.parameters import declare, declare_specs
 from robotica_kin.ros.qos import STREAM_PUB_QOS, STREAM_REPLAY_SUB_QOS
-from robotica_sim.sensors.compass import CompassModel, CompassParams, heading_noise_stddev
+from robotica_sim.sensors.compass import (COMPASS_PARAMETERS, compass_params, CompassModel,
+                                          heading_noise_stddev)
 from sensor_msgs.msg import Imu, MagneticField
 
 _DEG = math.pi / 180.0
@@ -35,33 +36,9 @@ class CompassEmulatorNode(GuardedNode):
 
     def __init__(self) -> None:
         super().__init__('compass_emulator')
-        defaults = CompassParams()
-        hard_iron = declare(self, 'hard_iron', [0.0, 0.0, 0.0],
-                            'Hard-iron offset (3 values) [T] in the sensor frame',
-                            read_only=True)
-        soft_iron = declare(self, 'soft_iron', [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0],
-                            'Soft-iron matrix, 9 values row by row [-]', read_only=True)
-        if len(soft_iron) != 9:
-            raise ValueError(f'soft_iron must have 9 values (3x3 row by row), got '
-                             f'{len(soft_iron)}')
-        params = CompassParams(
-            declination=declare(self, 'declination', defaults.declination,
-                                'Magnetic declination [rad], > 0 east', low=-math.pi,
-                                high=math.pi, read_only=True),
-            inclination=declare(self, 'inclination', defaults.inclination,
-                                'Magnetic inclination (dip) [rad], > 0 downwards',
-                                low=-math.pi / 2, high=math.pi / 2, read_only=True),
-            field_strength=declare(self, 'field_strength', defaults.field_strength,
-                                   'Earth field total intensity [T]', low=1e-7, high=1e-3,
-                                   read_only=True),
-            hard_iron=tuple(hard_iron),
-            soft_iron=tuple(tuple(soft_iron[3 * i:3 * i + 3]) for i in range(3)),
-            tilt_error=declare(self, 'tilt_error', 0.0, 'Tilt of the sensor [rad]',
-                               low=-0.5, high=0.5, read_only=True),
-            noise_stddev=declare(self, 'noise_stddev', 2e-7, 'White noise per axis [T]',
-                                 low=0.0, high=1e-4, read_only=True))
-        seed = declare(self, 'seed', 0, 'Seed of the noise draws', low=0, high=2**31 - 1,
-                       read_only=True)
+        values = declare_specs(self, COMPASS_PARAMETERS)
+        params = compass_params(values)
+        seed = values['seed']
         self._model = CompassModel(params, seed)
         self._field_variance = params.noise_stddev ** 2
         self._heading_variance = heading_noise_stddev(params) ** 2

@@ -16,10 +16,10 @@ from rclpy.experimental import EventsExecutor
 from robotica_kin.bounds import bounded_array, MAX_JOINT_POSITION
 from robotica_kin.ros.entry_point import run_node
 from robotica_kin.ros.guarded import GuardedNode
-from robotica_kin.ros.parameters import declare
+from robotica_kin.ros.parameters import declare, declare_specs
 from robotica_kin.ros.qos import STREAM_PUB_QOS, STREAM_REPLAY_SUB_QOS
 from robotica_msgs.msg import WheelEncoders
-from robotica_sim.sensors.encoder import EncoderModel, EncoderParams
+from robotica_sim.sensors.encoder import ENCODER_PARAMETERS, encoder_params, EncoderModel
 from sensor_msgs.msg import JointState
 
 
@@ -28,21 +28,9 @@ class EncoderEmulatorNode(GuardedNode):
 
     def __init__(self) -> None:
         super().__init__('encoder_emulator')
-        params = EncoderParams(
-            pulses_per_revolution=declare(
-                self, 'pulses_per_revolution', 1024,
-                'Pulses of one channel per encoder (motor) revolution, book §7.3.2', low=1,
-                high=10_000_000, read_only=True),
-            decoding=declare(self, 'decoding', 4, 'Quadrature decoding: 1, 2 or 4 counts per '
-                             'pulse', low=1, high=4, read_only=True),
-            gear_ratio=declare(self, 'gear_ratio', 1.0, 'Encoder revolutions per wheel '
-                               'revolution (the encoder on the motor shaft)', low=1e-3,
-                               high=1e4, read_only=True),
-            missed_count_probability=declare(
-                self, 'missed_count_probability', 0.0, 'Probability that an edge is not '
-                'counted', low=0.0, high=0.5, read_only=True))
-        seed = declare(self, 'seed', 0, 'Seed of the missed-count draws', low=0,
-                       high=2**31 - 1, read_only=True)
+        values = declare_specs(self, ENCODER_PARAMETERS)
+        params = encoder_params(values)
+        seed = values['seed']
         left, right = (np.random.default_rng(s) for s in np.random.SeedSequence(seed).spawn(2))
         self._counters = (EncoderModel(params, left), EncoderModel(params, right))
         self._ticks_per_rev = params.ticks_per_revolution

@@ -18,13 +18,12 @@ from nav_msgs.msg import Odometry
 import numpy as np
 from rclpy.experimental import EventsExecutor
 from robotica_kin.bounds import StampGate
-from robotica_kin.geodetic import GeodeticOrigin
 from robotica_kin.ros.convert import seconds_to_stamp, stamp_to_seconds
 from robotica_kin.ros.entry_point import run_node
 from robotica_kin.ros.guarded import GuardedNode
-from robotica_kin.ros.parameters import declare
+from robotica_kin.ros.parameters import declare, declare_specs
 from robotica_kin.ros.qos import STREAM_PUB_QOS, STREAM_REPLAY_SUB_QOS
-from robotica_sim.sensors.gps import gps_preset, GPS_PRESETS, GpsFix, GpsModel
+from robotica_sim.sensors.gps import gps_configuration, GPS_PARAMETERS, GpsFix, GpsModel
 from sensor_msgs.msg import NavSatFix, NavSatStatus
 
 
@@ -33,22 +32,10 @@ class GpsEmulatorNode(GuardedNode):
 
     def __init__(self) -> None:
         super().__init__('gps_emulator')
-        preset = declare(self, 'preset', 'dgps',
-                         f'Receiver: one of {tuple(GPS_PRESETS)} (book §7.7.5)', read_only=True)
-        self._params = gps_preset(preset)
-        seed = declare(self, 'seed', 0, 'Seed of the error draws', low=0, high=2**31 - 1,
-                       read_only=True)
-        self._model = GpsModel(self._params, seed)
-        self._origin = GeodeticOrigin(
-            declare(self, 'origin.latitude', 37.41, 'Latitude of the world origin [deg] '
-                    '(default: Seville)', low=-90.0, high=90.0, read_only=True),
-            declare(self, 'origin.longitude', -6.0, 'Longitude of the world origin [deg]',
-                    low=-180.0, high=180.0, read_only=True),
-            declare(self, 'origin.altitude', 10.0, 'Height of the origin above the WGS-84 '
-                    'ellipsoid [m]', low=-1e4, high=1e5, read_only=True))
-        self._antenna_height = declare(self, 'antenna_height', 0.0,
-                                       'Antenna height above the ground plane [m]', low=0.0,
-                                       high=100.0, read_only=True)
+        values = declare_specs(self, GPS_PARAMETERS)
+        self._params, self._origin = gps_configuration(values)
+        self._model = GpsModel(self._params, values['seed'])
+        self._antenna_height = values['antenna_height']
         self._frame = declare(self, 'frame_id', 'gps_link', 'frame_id of the fixes',
                               read_only=True)
         self._pending: deque[GpsFix] = deque()
@@ -57,8 +44,9 @@ class GpsEmulatorNode(GuardedNode):
         self.create_subscription(Odometry, 'ground_truth/odom', self._on_truth,
                                  STREAM_REPLAY_SUB_QOS)
         self.get_logger().info(
-            f'preset {preset!r}: sigma {self._params.horizontal_stddev:.3g} m per horizontal '
-            f'axis, {self._params.update_rate:g} Hz, latency {self._params.latency:g} s')
+            f'preset {values["preset"]!r}: sigma {self._params.horizontal_stddev:.3g} m per '
+            f'horizontal axis, {self._params.update_rate:g} Hz, latency '
+            f'{self._params.latency:g} s')
 
     def _on_truth(self, msg: Odometry) -> None:
         t = stamp_to_seconds(msg.header.stamp)

@@ -20,30 +20,15 @@ import math
 from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
 from rclpy.experimental import EventsExecutor
-from robotica_kin.mobile.vehicles import (STEERED_TYPES, vehicle_kinematics, VEHICLE_TYPES,
-                                          VehicleGeometry)
+from robotica_kin.mobile.vehicles import STEERED_TYPES
 from robotica_kin.ros.convert import odometry_message, seconds_to_stamp
 from robotica_kin.ros.entry_point import run_node
-from robotica_kin.ros.parameters import declare
+from robotica_kin.ros.parameters import declare, declare_specs
 from robotica_kin.ros.qos import COMMAND_QOS, STREAM_PUB_QOS
 from robotica_msgs.msg import VehicleCommand
 from robotica_sim.nodes.stepped_simulator import SteppedSimulatorNode
-from robotica_sim.simulation.vehicle import VehicleSimulation, VehicleSimulationParams
+from robotica_sim.simulation.vehicle import SIMULATOR_PARAMETERS, vehicle_simulation
 from sensor_msgs.msg import JointState
-
-GEOMETRY_PARAMETERS = (
-    ('wheel_radius', 0.1, 'Wheel radius c [m], book (4.109)', 1e-3, 10.0),
-    ('track', 0.4, 'Track b between the left and right wheels of an axle [m], book (4.110)',
-     1e-3, 100.0),
-    ('wheelbase', 0.5, 'Wheelbase l, rear to front axle [m] (steered vehicles), book (4.117)',
-     1e-3, 100.0),
-    ('base_radius', 0.2, 'Centre-to-wheel distance [m] (omni_three)', 1e-3, 100.0),
-    ('half_length', 0.2, 'Centre-to-axle distance [m] (mecanum)', 1e-3, 100.0),
-    ('max_steering_angle', 1.2, 'Steering angle limit |alpha| [rad] (steered vehicles)',
-     1e-3, 1.57),
-    ('icr_scale', 1.0, 'Skid steer: effective track / track (>= 1; 1 = no lateral skid)',
-     1.0, 10.0),
-)
 
 
 class SimulatorNode(SteppedSimulatorNode):
@@ -51,41 +36,12 @@ class SimulatorNode(SteppedSimulatorNode):
 
     def __init__(self) -> None:
         super().__init__('simulator', default_step_period=0.02, command_topic='cmd_vel')
-        vehicle_type = declare(self, 'vehicle.type', 'differential',
-                               f'Configuration: one of {VEHICLE_TYPES}', read_only=True)
-        if vehicle_type not in VEHICLE_TYPES:
-            raise ValueError(f'vehicle.type must be one of {VEHICLE_TYPES}, got '
-                             f'{vehicle_type!r}')
+        params = declare_specs(self, SIMULATOR_PARAMETERS)
+        self._sim = vehicle_simulation(params, self.step_period)
+        vehicle_type = params['vehicle.type']
         self._steered = vehicle_type in STEERED_TYPES
         if self._steered:
             self._command_topic = 'vehicle_command'
-        geometry = VehicleGeometry(**{
-            name: declare(self, f'vehicle.{name}', default, description, low=low, high=high,
-                          read_only=True)
-            for name, default, description, low, high in GEOMETRY_PARAMETERS})
-        pose = [declare(self, 'initial_pose.' + k, 0.0, d, low=-1e6, high=1e6, read_only=True)
-                for k, d in (('x', 'Initial x [m], world frame'),
-                             ('y', 'Initial y [m], world frame'),
-                             ('theta', 'Initial heading [rad], REP-103 (from the x axis)'))]
-        params = VehicleSimulationParams(
-            step_period=self.step_period,
-            rk4_substeps=declare(self, 'rk4_substeps', 1, 'RK4 integration steps per step',
-                                 low=1, high=1000, read_only=True),
-            cmd_timeout=declare(self, 'cmd_timeout', 0.5,
-                                'A command older than this [s, simulated] stops the vehicle',
-                                low=1e-3, high=60.0, read_only=True),
-            traction_time_constant=declare(
-                self, 'traction_time_constant', 0.0,
-                'First-order lag of the wheel/drive speeds [s]; 0: none', low=0.0, high=60.0,
-                read_only=True),
-            steering_time_constant=declare(
-                self, 'steering_time_constant', 0.0,
-                'First-order lag of the steering [s]; 0: none', low=0.0, high=60.0,
-                read_only=True),
-            longitudinal_slip=declare(
-                self, 'longitudinal_slip', 0.0,
-                'Wheel slip s: the ground moves (1 - s) of what the wheels roll', low=0.0,
-                high=0.9, read_only=True))
         self._world_frame = declare(self, 'world_frame_id', 'map',
                                     'Frame of the ground-truth pose', read_only=True)
         self._base_frame = declare(self, 'base_frame_id', 'base_link',
@@ -95,7 +51,6 @@ class SimulatorNode(SteppedSimulatorNode):
                     'Left odometry wheel joint name (drive or rear axle)', read_only=True),
             declare(self, 'right_wheel_joint', 'right_wheel_joint',
                     'Right odometry wheel joint name (drive or rear axle)', read_only=True)]
-        self._sim = VehicleSimulation(vehicle_kinematics(vehicle_type, geometry), params, pose)
         self._truth_pub = self.create_publisher(Odometry, 'ground_truth/odom', STREAM_PUB_QOS)
         self._joints_pub = self.create_publisher(JointState, 'joint_states', STREAM_PUB_QOS,
                                                  allow_nan=('velocity',))
@@ -105,8 +60,8 @@ class SimulatorNode(SteppedSimulatorNode):
         else:
             self.create_subscription(Twist, 'cmd_vel', self._on_cmd_vel, COMMAND_QOS)
         self._was_stale = False
-        self.get_logger().info(f'vehicle {vehicle_type!r} ({geometry}), commands on '
-                               f'{self._command_topic}')
+        self.get_logger().info(f'vehicle {vehicle_type!r} ({self._sim.kinematics.geometry}), '
+                               f'commands on {self._command_topic}')
 
     # -- callbacks: store and convert only ------------------------------------------------
     def _take(self, command: tuple[float, float, float]) -> None:

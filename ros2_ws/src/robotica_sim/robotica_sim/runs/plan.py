@@ -4,18 +4,35 @@ The plan of a run: which nodes a scenario starts, with which parameters and rema
 :func:`plan_run` turns a :class:`~robotica_sim.runs.scenario.Scenario` into node
 specifications (one process each) and the list of topics the recorder must record. It is
 pure data; starting the processes is :mod:`robotica_sim.runs.supervisor`'s job.
+
+Each node's parameters go through the node's own start-up check before any process starts:
+the core function the node builds its model with (``vehicle_simulation``, ``make_joint_law``,
+``reference_samples``, ...), which checks the ranges the node declares
+(:mod:`robotica_kin.parameter_specs`). A refusal is a :class:`ScenarioError` naming the
+scenario key (``ej8_2.yaml: reference.period must be > 0 s, got [0.0]``), not a node that
+exits with code 1 after the others have started.
 """
 from dataclasses import dataclass, field
 import inspect
 import math
+from typing import Any, Callable, Mapping
 
 import numpy as np
+from robotica_ctrl.joint_control.control_laws import make_joint_law
 from robotica_ctrl.mobile import path_shapes
-from robotica_ctrl.mobile.tracking_laws import LAW_PARAMETERS
-from robotica_kin.mobile.vehicles import STEERED_TYPES
-from robotica_kin.robots import puma560, two_link_arm
+from robotica_ctrl.mobile.path import PolylinePath
+from robotica_ctrl.mobile.tracking_laws import check_gains, LAW_PARAMETERS, TRACKER_PARAMETERS
+from robotica_ctrl.trajectory.joint_reference import reference_samples
+from robotica_kin.dh import as_dyn_model, DHModel
+from robotica_kin.mobile.vehicles import GEOMETRY_PARAMETERS, STEERED_TYPES
+from robotica_kin.parameter_specs import check_parameters, ParameterError
+from robotica_kin.robots import puma560, robot_by_name, two_link_arm
 from robotica_sim.runs.scenario import Scenario, ScenarioError
-from robotica_sim.sensors.gps import gps_preset
+from robotica_sim.sensors.compass import compass_params
+from robotica_sim.sensors.encoder import encoder_params
+from robotica_sim.sensors.gps import gps_configuration, gps_preset
+from robotica_sim.simulation.arm import arm_simulation
+from robotica_sim.simulation.vehicle import vehicle_simulation
 
 PATH_SHAPES = ('straight_line', 'circle', 'rounded_rectangle', 'figure_eight', 'polyline',
                'parabola', 'unicycle_trajectory')
@@ -83,6 +100,26 @@ def reference_path(scenario: Scenario) -> tuple[list[list[float]], list[float] |
 
 def _one_line(err: Exception) -> str:
     return ' '.join(str(err).split())
+
+
+def _node_check(where: str, section: str, keys: Mapping[str, str],
+                check: Callable[[], Any]) -> None:
+    """
+    Run a node's start-up check on the plan's values; a refusal becomes a ScenarioError.
+
+    ``keys`` maps the node's parameter names to the scenario keys they come from, so that the
+    message names the key (``robot.wheelbase must be in [0.001, 100], got 200.0``); another
+    refusal is given under ``section``.
+    """
+    try:
+        check()
+    except ParameterError as err:
+        if err.name not in keys:
+            raise ScenarioError(f'{where}: {section}: {_one_line(err)}') from None
+        raise ScenarioError(f'{where}: {keys[err.name]} {_one_line(ValueError(err.reason))}') \
+            from None
+    except ValueError as err:
+        raise ScenarioError(f'{where}: {section}: {_one_line(err)}') from None
 
 
 def _point_count(shape, args: dict) -> float:
@@ -193,11 +230,26 @@ def _reference_parameters(scenario: Scenario, joints: list[str]) -> dict:
     return params
 
 
+def _dynamic_robot(params: dict) -> DHModel:
+    """Return the robot of a node's ``robot`` / ``dyn_table`` parameters, as the node does."""
+    if params['robot']:
+        return robot_by_name(params['robot'])
+    return as_dyn_model(np.reshape(params['dyn_table'], (-1, 20)))
+
+
+ARM_KEYS = {'step_period': 'step_period', 'gravity': 'arm.gravity',
+            **{key: f'arm.{key}' for key in ('initial_positions', 'initial_velocities', 'tau_max',
+                                             'unmodelled_viscous', 'payload.mass', 'payload.com',
+                                             'payload.time')}}
+"""The arm simulator's parameters that come from the scenario: their scenario keys."""
+
+
 def _plan_arm(scenario: Scenario) -> list[NodeSpec]:
     where = scenario.source or scenario.name
     arm = scenario.arm
     plant, model, joints = _arm_parameters(scenario)
-    gains = {f'{scenario.controller.law}.{key}': _numbers(value, f'{where}: controller.{key}')
+    law = scenario.controller.law
+    gains = {f'{law}.{key}': _numbers(value, f'{where}: controller.{key}')
              for key, value in scenario.controller.gains.items()}
     simulator = {**plant, 'gravity': _floats(arm.gravity), 'step_period': scenario.step_period,
                  'pacing': scenario.pacing, 'end_time': scenario.duration, 'autostart': False,
@@ -208,12 +260,26 @@ def _plan_arm(scenario: Scenario) -> list[NodeSpec]:
     if arm.payload.mass > 0.0:
         simulator.update({'payload.mass': arm.payload.mass, 'payload.com': _floats(
             arm.payload.com), 'payload.time': arm.payload.time})
+    reference = _reference_parameters(scenario, joints)
+    _node_check(where, 'reference', {'duration': 'duration', 'generator': 'reference.generator',
+                                     **{node: f'reference.{key}'
+                                        for key, node in REFERENCE_KEYS.items()},
+                                     'sample_period': 'reference.sample_period'},
+                lambda: reference_samples(reference))
+    _node_check(where, 'controller', {'law': 'controller.law',
+                                      **{key: f'controller.{key}'
+                                         for key in scenario.controller.gains}},
+                lambda: make_joint_law(law, _dynamic_robot(model),
+                                       {k.removeprefix(f'{law}.'): v for k, v in gains.items()},
+                                       arm.gravity, use_friction=scenario.controller.use_friction))
+    _node_check(where, 'arm', ARM_KEYS,
+                lambda: arm_simulation(_dynamic_robot(plant), simulator, scenario.step_period))
     return [
         NodeSpec('robotica_ctrl', 'joint_trajectory_publisher', 'joint_trajectory_publisher',
-                 _reference_parameters(scenario, joints),
-                 remappings={'joint_trajectory': TRAJECTORY_TOPIC}, use_sim_time=False),
+                 reference, remappings={'joint_trajectory': TRAJECTORY_TOPIC},
+                 use_sim_time=False),
         NodeSpec('robotica_ctrl', 'joint_controller', 'joint_controller', {
-            'law': scenario.controller.law, **model, 'gravity': _floats(arm.gravity),
+            'law': law, **model, 'gravity': _floats(arm.gravity),
             'use_friction': scenario.controller.use_friction,
             'first_period': scenario.step_period, **gains}, use_sim_time=False),
         NodeSpec('robotica_sim', 'arm_simulator', 'simulator', simulator, use_sim_time=False),
@@ -222,25 +288,33 @@ def _plan_arm(scenario: Scenario) -> list[NodeSpec]:
 
 def _mobile_sensors(scenario: Scenario) -> list[NodeSpec]:
     """Return the sensor emulators of a mobile run, each seeded from the scenario's seed."""
+    where = scenario.source or scenario.name
     sensors = scenario.sensors
-    encoders = sensors.encoders
+    encoders = {key: getattr(sensors.encoders, key) for key in (
+        'pulses_per_revolution', 'decoding', 'gear_ratio', 'missed_count_probability')}
+    _node_check(where, 'sensors.encoders', {key: f'sensors.encoders.{key}' for key in encoders},
+                lambda: encoder_params(encoders))
     nodes = [NodeSpec('robotica_sim', 'encoder_emulator', 'encoder_emulator', {
-        'pulses_per_revolution': encoders.pulses_per_revolution, 'decoding': encoders.decoding,
-        'gear_ratio': encoders.gear_ratio,
-        'missed_count_probability': encoders.missed_count_probability,
-        'seed': scenario.seed * 10 + 1})]
+        **encoders, 'seed': scenario.seed * 10 + 1})]
     if sensors.gyro.enabled:
         nodes.append(NodeSpec('robotica_sim', 'gyro_emulator', 'gyro_emulator', {
             'preset': sensors.gyro.preset, 'seed': scenario.seed * 10 + 2}))
     if sensors.compass.enabled:
+        compass = {'noise_stddev': sensors.compass.noise_stddev,
+                   'hard_iron': _floats(sensors.compass.hard_iron),
+                   'tilt_error': sensors.compass.tilt_error}
+        _node_check(where, 'sensors.compass', {key: f'sensors.compass.{key}' for key in compass},
+                    lambda: compass_params(compass))
         nodes.append(NodeSpec('robotica_sim', 'compass_emulator', 'compass_emulator', {
-            'noise_stddev': sensors.compass.noise_stddev,
-            'hard_iron': _floats(sensors.compass.hard_iron),
-            'tilt_error': sensors.compass.tilt_error, 'seed': scenario.seed * 10 + 3}))
+            **compass, 'seed': scenario.seed * 10 + 3}))
     if sensors.gps.enabled:
+        gps = {'preset': sensors.gps.preset, **_origin(scenario)}
+        _node_check(where, 'sensors.gps', {'preset': 'sensors.gps.preset', **{
+            f'origin.{name}': f'sensors.gps.origin[{i}] ({name})'
+            for i, name in enumerate(('latitude', 'longitude', 'altitude'))}},
+                    lambda: gps_configuration(gps))
         nodes.append(NodeSpec('robotica_sim', 'gps_emulator', 'gps_emulator', {
-            'preset': sensors.gps.preset, **_origin(scenario),
-            'seed': scenario.seed * 10 + 4}))
+            **gps, 'seed': scenario.seed * 10 + 4}))
     return nodes
 
 
@@ -260,45 +334,74 @@ def _gps_bias(scenario: Scenario) -> dict:
             'gps_bias.white_stddev': params.white_stddev}
 
 
+ROBOT_KEYS = {'wheel_radius': 'wheel_radius', 'track': 'wheel_separation',
+              **{name: name for name in ('wheelbase', 'base_radius', 'half_length',
+                                         'max_steering_angle', 'icr_scale')}}
+"""The simulator's geometry (``vehicle.<name>``) by its scenario key (``robot.<key>``)."""
+SIMULATOR_KEYS = {'vehicle.type': 'robot.type',
+                  **{f'vehicle.{name}': f'robot.{key}' for name, key in ROBOT_KEYS.items()},
+                  **{key: f'robot.{key}' for key in ('traction_time_constant',
+                                                     'steering_time_constant',
+                                                     'longitudinal_slip')},
+                  **{f'initial_pose.{axis}': f'robot.initial_pose[{i}] ({axis})'
+                     for i, axis in enumerate(('x', 'y', 'theta'))}}
+"""The vehicle simulator's parameters that come from the scenario: their scenario keys."""
+
+
+def _tracker_parameters(scenario: Scenario) -> dict:
+    """
+    Return the path tracker's parameters of the scenario's ``tracker`` section but ``law``.
+
+    The values are those the node takes (an integer gain as an int, a profile as a list) and
+    checked as the node checks them (:data:`TRACKER_PARAMETERS`, ``check_gains``).
+    """
+    where = scenario.source or scenario.name
+    law = scenario.tracker.law
+    _node_check(where, 'tracker', {'law': 'tracker.law'},
+                lambda: TRACKER_PARAMETERS['law'].check('law', law))
+    specs = LAW_PARAMETERS[law]
+    unknown = set(scenario.tracker.gains) - set(specs) - set(TRACKER_NODE_KEYS)
+    if unknown:
+        raise ScenarioError(f'{where}: tracker.{sorted(unknown)[0]} is not a gain of {law}; '
+                            f'its gains: {sorted(specs)}')
+    params: dict = {}
+    for key, value in scenario.tracker.gains.items():
+        spec = TRACKER_PARAMETERS[key] if key in TRACKER_NODE_KEYS else specs[key]
+        if not spec.choices and not isinstance(value, str):
+            numbers = _numbers(value, f'{where}: tracker.{key}')   # open_loop takes lists
+            value = numbers if isinstance(value, list) else numbers[0]
+            if isinstance(spec.default, int) and isinstance(value, float) \
+                    and value == int(value):
+                value = int(value)
+        params[key if key in TRACKER_NODE_KEYS else f'{law}.{key}'] = value
+    keys = {key: f'tracker.{key}' for key in scenario.tracker.gains}
+    _node_check(where, 'tracker', keys, lambda: check_parameters(TRACKER_PARAMETERS, params))
+    _node_check(where, 'tracker', keys, lambda: check_gains(law, {
+        key.removeprefix(f'{law}.'): value for key, value in params.items()
+        if key.startswith(f'{law}.')}))
+    return params
+
+
 def _plan_mobile(scenario: Scenario) -> list[NodeSpec]:
     where = scenario.source or scenario.name
     robot = scenario.robot
     x0, y0, theta0 = robot.initial_pose
     pose = {'initial_pose.x': x0, 'initial_pose.y': y0, 'initial_pose.theta': theta0}
     points, times = reference_path(scenario)
-    law = scenario.tracker.law
-    if law not in LAW_PARAMETERS:
-        raise ScenarioError(f'{where}: tracker.law must be one of {tuple(LAW_PARAMETERS)}, '
-                            f'got {law!r}')
-    specs = LAW_PARAMETERS[law]
-    unknown = set(scenario.tracker.gains) - set(specs) - set(TRACKER_NODE_KEYS)
-    if unknown:
-        raise ScenarioError(f'{where}: tracker.{sorted(unknown)[0]} is not a gain of {law}; '
-                            f'its gains: {sorted(specs)}')
-    gains: dict = {}
-    for key, value in scenario.tracker.gains.items():
-        if key in TRACKER_NODE_KEYS:
-            gains[key] = value if isinstance(value, str) else \
-                _numbers(value, f'{where}: tracker.{key}')[0]
-        elif specs[key].choices:
-            if value not in specs[key].choices:
-                raise ScenarioError(f'{where}: tracker.{key} must be one of '
-                                    f'{specs[key].choices}, got {value!r}')
-            gains[f'{law}.{key}'] = value                        # e.g. frenet law: nonlinear
-        else:
-            numbers = _numbers(value, f'{where}: tracker.{key}')   # open_loop takes lists
-            low, high = specs[key].low, specs[key].high
-            if any((low is not None and v < low) or (high is not None and v > high)
-                   for v in numbers):
-                raise ScenarioError(f'{where}: tracker.{key} must be in [{low}, {high}], got '
-                                    f'{value!r}')
-            if isinstance(specs[key].default, int):
-                if numbers[0] != int(numbers[0]):
-                    raise ScenarioError(f'{where}: tracker.{key} must be an integer, got '
-                                        f'{value!r}')
-                gains[f'{law}.{key}'] = int(numbers[0])
-            else:
-                gains[f'{law}.{key}'] = numbers if isinstance(value, list) else numbers[0]
+    # The tracker refuses a path of fewer than two distinct points when it arrives (not at
+    # start-up): the robot would hold still for the whole run.
+    _node_check(where, 'path', {}, lambda: PolylinePath(points))
+    gains = _tracker_parameters(scenario)
+    simulator = {
+        'vehicle.type': robot.type, **{f'vehicle.{name}': getattr(robot, ROBOT_KEYS[name])
+                                       for name in GEOMETRY_PARAMETERS},
+        **{key: getattr(robot, key) for key in ('traction_time_constant',
+                                                'steering_time_constant', 'longitudinal_slip')},
+        'step_period': scenario.step_period, 'pacing': scenario.pacing,
+        'lockstep.follow_topics': list(followed_topics(scenario)),
+        'end_time': scenario.duration, 'autostart': False, **pose}
+    _node_check(where, 'robot', SIMULATOR_KEYS,
+                lambda: vehicle_simulation(simulator, scenario.step_period))
     odometry = scenario.odometry
     steered = robot.type in STEERED_TYPES
     return [
@@ -319,16 +422,5 @@ def _plan_mobile(scenario: Scenario) -> list[NodeSpec]:
                   'command_type': 'steering' if steered else 'twist',
                   'wheelbase': robot.wheelbase},
                  remappings={'/path_tracker/path': '/path'}),
-        NodeSpec('robotica_sim', 'simulator', 'simulator', {
-            'vehicle.type': robot.type, 'vehicle.wheel_radius': robot.wheel_radius,
-            'vehicle.track': robot.wheel_separation, 'vehicle.wheelbase': robot.wheelbase,
-            'vehicle.base_radius': robot.base_radius, 'vehicle.half_length': robot.half_length,
-            'vehicle.max_steering_angle': robot.max_steering_angle,
-            'vehicle.icr_scale': robot.icr_scale,
-            'traction_time_constant': robot.traction_time_constant,
-            'steering_time_constant': robot.steering_time_constant,
-            'longitudinal_slip': robot.longitudinal_slip,
-            'step_period': scenario.step_period, 'pacing': scenario.pacing,
-            'lockstep.follow_topics': list(followed_topics(scenario)),
-            'end_time': scenario.duration, 'autostart': False, **pose}, use_sim_time=False),
+        NodeSpec('robotica_sim', 'simulator', 'simulator', simulator, use_sim_time=False),
     ]

@@ -27,14 +27,16 @@ one-cycle error of amplitude about ε tan I.
 
 from dataclasses import dataclass
 import math
+from typing import Any, Mapping
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from robotica_kin.angles import wrap_to_pi
 from robotica_kin.finite import finite_real
+from robotica_kin.parameter_specs import parameter_values, ParameterSpec, seed_spec
 
-__all__ = ['CompassModel', 'CompassParams', 'earth_field', 'heading_error_curve',
-           'heading_noise_stddev']
+__all__ = ['COMPASS_PARAMETERS', 'CompassModel', 'CompassParams', 'compass_params', 'earth_field',
+           'heading_error_curve', 'heading_noise_stddev']
 
 _DEG = math.pi / 180.0  # [rad] per degree
 
@@ -244,3 +246,43 @@ class CompassModel:
                  + self._params.noise_stddev * self._rng.standard_normal(3))
         heading = math.atan2(field[0], field[1]) - self._params.declination
         return field, float(wrap_to_pi(heading))
+
+
+COMPASS_PARAMETERS: dict[str, ParameterSpec] = {
+    'declination': ParameterSpec(CompassParams.declination, 'Magnetic declination [rad], > 0 '
+                                 'east', -math.pi, math.pi),
+    'inclination': ParameterSpec(CompassParams.inclination, 'Magnetic inclination (dip) [rad], '
+                                 '> 0 downwards', -math.pi / 2, math.pi / 2),
+    'field_strength': ParameterSpec(CompassParams.field_strength, 'Earth field total intensity '
+                                    '[T]', 1e-7, 1e-3),
+    'hard_iron': ParameterSpec((0.0, 0.0, 0.0), 'Hard-iron offset (3 values) [T] in the sensor '
+                               'frame', -1e-3, 1e-3),
+    'soft_iron': ParameterSpec((1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0),
+                               'Soft-iron matrix, 9 values row by row [-]', -1e3, 1e3),
+    'tilt_error': ParameterSpec(0.0, 'Tilt of the sensor [rad]', -0.5, 0.5),
+    'noise_stddev': ParameterSpec(2e-7, 'White noise per axis [T]', 0.0, 1e-4),
+    'seed': seed_spec('Seed of the noise draws'),
+}
+"""The compass emulator node's parameters by name: :func:`compass_params`."""
+
+
+def compass_params(parameters: Mapping[str, Any]) -> CompassParams:
+    """
+    Return the compass of the emulator node's ``parameters`` (names of COMPASS_PARAMETERS).
+
+    Missing names take their defaults, others are ignored. Raises
+    :class:`~robotica_kin.parameter_specs.ParameterError` for a value out of its range and
+    ValueError as :class:`CompassParams` (e.g. a singular soft-iron matrix).
+
+    >>> compass_params({'tilt_error': 0.1}).tilt_error
+    0.1
+    """
+    values = parameter_values(COMPASS_PARAMETERS, parameters)
+    if len(values['soft_iron']) != 9:
+        raise ValueError(f'soft_iron must have 9 values (3x3 row by row), got '
+                         f'{len(values["soft_iron"])}')
+    soft_iron = values['soft_iron']
+    return CompassParams(**{name: values[name] for name in (
+        'declination', 'inclination', 'field_strength', 'tilt_error', 'noise_stddev')},
+        hard_iron=tuple(values['hard_iron']),
+        soft_iron=tuple(tuple(soft_iron[3 * i:3 * i + 3]) for i in range(3)))

@@ -17,9 +17,13 @@ from dataclasses import dataclass
 import math
 import numbers
 
-import numpy as np
+from typing import Any, Mapping
 
-__all__ = ['DECODINGS', 'EncoderModel', 'EncoderParams', 'quantize_ticks']
+import numpy as np
+from robotica_kin.parameter_specs import parameter_values, ParameterSpec, seed_spec
+
+__all__ = ['DECODINGS', 'ENCODER_PARAMETERS', 'EncoderModel', 'EncoderParams', 'encoder_params',
+           'quantize_ticks']
 
 DECODINGS = (1, 2, 4)
 """Quadrature decodings: counts per pulse of one channel (x1, x2, x4), book §7.3.2."""
@@ -153,3 +157,32 @@ class EncoderModel:
             self._missed += lost if edges > 0 else -lost
         self._ideal = ideal
         return ideal - self._missed
+
+
+ENCODER_PARAMETERS: dict[str, ParameterSpec] = {
+    'pulses_per_revolution': ParameterSpec(1024, 'Pulses of one channel per encoder (motor) '
+                                           'revolution, book §7.3.2', 1, 10_000_000),
+    'decoding': ParameterSpec(4, 'Quadrature decoding: 1, 2 or 4 counts per pulse', 1, 4),
+    'gear_ratio': ParameterSpec(1.0, 'Encoder revolutions per wheel revolution (the encoder on '
+                                'the motor shaft)', 1e-3, 1e4),
+    'missed_count_probability': ParameterSpec(0.0, 'Probability that an edge is not counted',
+                                              0.0, 0.5),
+    'seed': seed_spec('Seed of the missed-count draws'),
+}
+"""The encoder emulator node's parameters by name: :func:`encoder_params`."""
+
+
+def encoder_params(parameters: Mapping[str, Any]) -> EncoderParams:
+    """
+    Return the encoder of the emulator node's ``parameters`` (names of ENCODER_PARAMETERS).
+
+    Missing names take their defaults, others are ignored. Raises
+    :class:`~robotica_kin.parameter_specs.ParameterError` for a value out of its range and
+    ValueError as :class:`EncoderParams` (e.g. a count per revolution that is not an integer).
+
+    >>> encoder_params({'pulses_per_revolution': 500}).ticks_per_revolution
+    2000
+    """
+    values = parameter_values(ENCODER_PARAMETERS, parameters)
+    return EncoderParams(**{name: values[name] for name in (
+        'pulses_per_revolution', 'decoding', 'gear_ratio', 'missed_count_probability')})

@@ -51,15 +51,18 @@ from dataclasses import dataclass, fields
 import math
 import numbers
 from types import MappingProxyType
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from robotica_kin.finite import finite_real
+from robotica_kin.geodetic import GeodeticOrigin
+from robotica_kin.parameter_specs import parameter_values, ParameterSpec, seed_spec
 from robotica_kin.types import Vector
 
 __all__ = [
-    'GPS_PRESETS', 'GPS_STATUSES', 'GpsFix', 'GpsModel', 'GpsParams', 'NAVSAT_STATUS',
-    'gps_preset', 'stddev_from_2drms', 'stddev_from_cep',
+    'GPS_PARAMETERS', 'GPS_PRESETS', 'GPS_STATUSES', 'GpsFix', 'GpsModel', 'GpsParams',
+    'NAVSAT_STATUS', 'gps_configuration', 'gps_preset', 'stddev_from_2drms', 'stddev_from_cep',
 ]
 
 GPS_STATUSES = ('fix', 'dgps', 'rtk')
@@ -411,3 +414,35 @@ class GpsModel:
                      + sigma * math.sqrt(-math.expm1(-2.0 * ratio)) * noise)
         self._error, self._error_t = error, t
         return error
+
+
+GPS_PARAMETERS: dict[str, ParameterSpec] = {
+    'preset': ParameterSpec('dgps', 'Receiver (book §7.7.5)', choices=tuple(GPS_PRESETS)),
+    'origin.latitude': ParameterSpec(37.41, 'Latitude of the world origin [deg] (default: '
+                                     'Seville)', -90.0, 90.0),
+    'origin.longitude': ParameterSpec(-6.0, 'Longitude of the world origin [deg]',
+                                      -180.0, 180.0),
+    'origin.altitude': ParameterSpec(10.0, 'Height of the origin above the WGS-84 ellipsoid '
+                                     '[m]', -1e4, 1e5),
+    'antenna_height': ParameterSpec(0.0, 'Antenna height above the ground plane [m]',
+                                    0.0, 100.0),
+    'seed': seed_spec('Seed of the error draws'),
+}
+"""The GPS emulator node's parameters by name: :func:`gps_configuration`."""
+
+
+def gps_configuration(parameters: Mapping[str, Any]) -> tuple[GpsParams, GeodeticOrigin]:
+    """
+    Return the receiver and the world origin of the emulator node's ``parameters``.
+
+    ``parameters`` holds names of :data:`GPS_PARAMETERS` (missing ones take their defaults,
+    others are ignored). Raises :class:`~robotica_kin.parameter_specs.ParameterError` for a
+    value out of its range or choices.
+
+    >>> params, origin = gps_configuration({'preset': 'rtk', 'origin.latitude': 40.0})
+    >>> params.status, origin.latitude_deg
+    ('rtk', 40.0)
+    """
+    values = parameter_values(GPS_PARAMETERS, parameters)
+    return gps_preset(values['preset']), GeodeticOrigin(
+        values['origin.latitude'], values['origin.longitude'], values['origin.altitude'])

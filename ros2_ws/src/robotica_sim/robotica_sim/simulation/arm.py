@@ -21,6 +21,7 @@ saturates the torque.
 import ctypes
 from dataclasses import dataclass
 import math
+from typing import Any, Mapping
 import weakref
 
 import numpy as np
@@ -30,9 +31,11 @@ from robotica_kin.dh import as_dyn_model, DHModel
 from robotica_kin.dynamics import DEFAULT_GRAVITY, JointFriction, set_gravity
 from robotica_kin.finite import all_finite
 from robotica_kin.native_library import address, ERROR_SIZE, native_library
+from robotica_kin.parameter_specs import (named_error, parameter_values, ParameterError,
+                                          ParameterSpec)
 from robotica_kin.pinocchio_model import build_model
 
-__all__ = ['ArmSimulation', 'ArmSimulationParams']
+__all__ = ['ARM_SIMULATOR_PARAMETERS', 'ArmSimulation', 'ArmSimulationParams', 'arm_simulation']
 
 
 @dataclass(frozen=True)
@@ -215,3 +218,70 @@ class ArmSimulation:
         self._model.inertias[n] = self._model.inertias[n] + pin.Inertia(mass, point,
                                                                         np.zeros((3, 3)))
         self._load_native_model()
+
+
+ARM_SIMULATOR_PARAMETERS: dict[str, ParameterSpec] = {
+    'gravity': ParameterSpec(DEFAULT_GRAVITY, 'Gravity acceleration [m/s^2] in the base frame '
+                             '{0}'),
+    'respect_limits': ParameterSpec(True, 'Stop the joints at their limits'),
+    'payload.mass': ParameterSpec(0.0, 'Mass grasped at payload.time [kg]; 0: none (Ej. 8.4: '
+                                  '2)', 0.0, 1e4),
+    'payload.com': ParameterSpec((0.0, 0.0, 0.0), 'Its position [m] in the last link frame {n}'),
+    'payload.time': ParameterSpec(0.0, 'Simulated time [s] of the grasp (Ej. 8.4: 10)',
+                                  0.0, 1e7),
+    'cmd_timeout': ParameterSpec(0.01, 'A command older than this [s, simulated] engages the '
+                                 'brakes', 1e-4, 60.0),
+}
+"""The arm simulator node's parameters with a default, by name: :func:`arm_simulation`.
+``initial_positions``, ``initial_velocities`` (default zeros), ``tau_max`` and
+``unmodelled_viscous`` (1 or n values; default none) are apart: their size is the robot's."""
+
+
+def _per_joint(values: Any, n: int, name: str) -> tuple[float, ...]:
+    """Return () for no values, n values as given, or one value repeated n times."""
+    values = list(values) if values is not None else []
+    if len(values) == 1:
+        values = values * n
+    if values and len(values) != n:
+        raise ParameterError(name, f'needs 1 or {n} values, got {len(values)}')
+    return tuple(float(v) for v in values)
+
+
+def arm_simulation(robot: DHModel, parameters: Mapping[str, Any],
+                   step_period: float) -> ArmSimulation:
+    """
+    Return the simulation the arm simulator node runs for ``robot`` and its ``parameters``.
+
+    ``parameters`` maps the node's names (:data:`ARM_SIMULATOR_PARAMETERS`,
+    ``initial_positions`` ...) to values; missing ones take their defaults, others are ignored.
+    ``step_period`` [s] is the simulated time per step.
+
+    Raises
+    ------
+    robotica_kin.parameter_specs.ParameterError
+        For a value out of its range or refused by the simulation (``name`` is the parameter's).
+    ValueError
+        For other values the simulation refuses.
+
+    Examples
+    --------
+    >>> from robotica_kin.robots import puma560
+    >>> arm_simulation(puma560(), {'tau_max': [50.0]}, 1e-3).params.tau_max[5]
+    50.0
+
+    """
+    values = parameter_values(ARM_SIMULATOR_PARAMETERS, parameters)
+    if len(values['payload.com']) != 3:
+        raise ParameterError('payload.com', f'must be 3 values [m], got {values["payload.com"]}')
+    n = robot.n
+    sizes = {name: _per_joint(parameters.get(name), n, name)
+             for name in ('tau_max', 'unmodelled_viscous')}
+    given = {name: parameters.get(name) for name in ('initial_positions', 'initial_velocities')}
+    try:
+        start = {name: robot.check_q(q if q is not None and len(q) else [0.0] * n, name)
+                 for name, q in given.items()}
+        params = ArmSimulationParams(step_period=step_period, gravity=tuple(values['gravity']),
+                                     respect_limits=values['respect_limits'], **sizes)
+    except ValueError as err:
+        raise named_error(err, ('step_period', 'gravity', *sizes, *given)) from None
+    return ArmSimulation(robot, params, start['initial_positions'], start['initial_velocities'])

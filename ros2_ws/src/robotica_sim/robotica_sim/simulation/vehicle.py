@@ -19,14 +19,18 @@ keeps its steering angle): the stale-command safety of ros2_controllers' ``cmd_v
 
 from dataclasses import dataclass
 import math
+from typing import Any, Mapping
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from robotica_kin.bounds import bounded, MAX_ANGULAR_RATE, MAX_SPEED
 from robotica_kin.integrators import rk4_step
-from robotica_kin.mobile.vehicles import as_command, VehicleKinematics
+from robotica_kin.mobile.vehicles import (as_command, GEOMETRY_PARAMETERS, vehicle_kinematics,
+                                          VEHICLE_TYPES, VehicleGeometry, VehicleKinematics)
+from robotica_kin.parameter_specs import parameter_values, ParameterSpec
 
-__all__ = ['VehicleSimulation', 'VehicleSimulationParams']
+__all__ = ['SIMULATOR_PARAMETERS', 'VehicleSimulation', 'VehicleSimulationParams',
+           'vehicle_simulation']
 
 
 @dataclass(frozen=True)
@@ -54,6 +58,26 @@ class VehicleSimulationParams:
         if not (0.0 <= self.longitudinal_slip < 1.0):
             raise ValueError('longitudinal_slip must be in [0, 1), got '
                              f'{self.longitudinal_slip!r}')
+
+
+SIMULATOR_PARAMETERS: dict[str, ParameterSpec] = {
+    'vehicle.type': ParameterSpec('differential', 'Configuration', choices=VEHICLE_TYPES),
+    **{f'vehicle.{name}': spec for name, spec in GEOMETRY_PARAMETERS.items()},
+    **{f'initial_pose.{axis}': ParameterSpec(0.0, description, -1e6, 1e6)
+       for axis, description in (('x', 'Initial x [m], world frame'),
+                                 ('y', 'Initial y [m], world frame'),
+                                 ('theta', 'Initial heading [rad], REP-103 (from the x axis)'))},
+    'rk4_substeps': ParameterSpec(1, 'RK4 integration steps per step', 1, 1000),
+    'cmd_timeout': ParameterSpec(0.5, 'A command older than this [s, simulated] stops the '
+                                 'vehicle', 1e-3, 60.0),
+    'traction_time_constant': ParameterSpec(0.0, 'First-order lag of the wheel/drive speeds '
+                                            '[s]; 0: none', 0.0, 60.0),
+    'steering_time_constant': ParameterSpec(0.0, 'First-order lag of the steering [s]; 0: none',
+                                            0.0, 60.0),
+    'longitudinal_slip': ParameterSpec(0.0, 'Wheel slip s: the ground moves (1 - s) of what the '
+                                       'wheels roll', 0.0, 0.9),
+}
+"""The vehicle simulator node's parameters of the plant, by name: :func:`vehicle_simulation`."""
 
 
 class VehicleSimulation:
@@ -201,3 +225,34 @@ class VehicleSimulation:
             self._state = rk4_step(self._deriv, t, self._state, h, targets)
             t += h
         self._step += 1
+
+
+def vehicle_simulation(parameters: Mapping[str, Any], step_period: float) -> VehicleSimulation:
+    """
+    Return the simulation the vehicle simulator node runs for its ``parameters`` (by name).
+
+    ``parameters`` maps names of :data:`SIMULATOR_PARAMETERS` (others are ignored; missing
+    ones take their defaults) to values; ``step_period`` [s] is the simulated time per step.
+
+    Raises
+    ------
+    robotica_kin.parameter_specs.ParameterError
+        For a value out of its range or choices (``name`` is the parameter's).
+    ValueError
+        For values the models refuse together.
+
+    Examples
+    --------
+    >>> vehicle_simulation({'vehicle.type': 'bicycle', 'initial_pose.x': 1.0}, 0.02).pose
+    array([1., 0., 0.])
+
+    """
+    values = parameter_values(SIMULATOR_PARAMETERS, parameters)
+    geometry = VehicleGeometry(**{name: values[f'vehicle.{name}']
+                                  for name in GEOMETRY_PARAMETERS})
+    params = VehicleSimulationParams(
+        step_period=step_period, **{name: values[name] for name in (
+            'rk4_substeps', 'cmd_timeout', 'traction_time_constant', 'steering_time_constant',
+            'longitudinal_slip')})
+    pose = [values[f'initial_pose.{axis}'] for axis in ('x', 'y', 'theta')]
+    return VehicleSimulation(vehicle_kinematics(values['vehicle.type'], geometry), params, pose)

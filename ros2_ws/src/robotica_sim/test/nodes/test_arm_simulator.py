@@ -88,6 +88,7 @@ def test_brakes_hold_without_commands_and_on_nan(start_node, ros_node, spin, rea
     (('-p', 'robot:=scara'), 'unknown robot'),
     (('-p', "robot:=''", '-p', 'dyn_table:=[1.0, 2.0]'), 'rows of 20 values'),
     (('-p', 'tau_max:=[1.0, 2.0]'), 'tau_max needs 1 or 6 values'),
+    (('-p', 'tau_max:=[0.0]'), 'tau_max must be > 0 N m per joint'),
 ])
 def test_bad_parameters_are_refused(start_node, read_output, arguments, reason):
     proc = start_node('robotica_sim', 'arm_simulator', *arguments)

@@ -53,3 +53,10 @@ def test_bad_soft_iron_is_refused(start_node, read_output):
     proc = start_node('robotica_sim', 'compass_emulator', '-p', 'soft_iron:=[1.0, 0.0]')
     assert proc.wait(timeout=30) == 2
     assert 'soft_iron must have 9 values' in read_output(proc)
+
+
+def test_tilt_beyond_its_range_is_refused(start_node, read_output):
+    proc = start_node('robotica_sim', 'compass_emulator', '-p', 'tilt_error:=0.6')
+    assert proc.wait(timeout=30) == 2
+    text = read_output(proc)
+    assert 'tilt_error' in text and 'Traceback' not in text

@@ -70,3 +70,10 @@ def test_sigint_exits_cleanly(start_node, ros_node, spin):
     assert spin(executor, lambda: node.count_publishers('wheel_encoders') > 0)
     proc.send_signal(signal.SIGINT)
     assert proc.wait(timeout=20) == 0
+
+
+def test_fractional_counts_per_revolution_are_refused(start_node, read_output):
+    proc = start_node('robotica_sim', 'encoder_emulator', '-p', 'pulses_per_revolution:=1023',
+                      '-p', 'decoding:=1', '-p', 'gear_ratio:=1.5')
+    assert proc.wait(timeout=30) == 2
+    assert 'pulses_per_revolution x decoding x gear_ratio must be an integer' in read_output(proc)

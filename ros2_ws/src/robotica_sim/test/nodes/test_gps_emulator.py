@@ -72,4 +72,12 @@ def test_unknown_preset_is_refused(start_node, read_output):
     proc = start_node('robotica_sim', 'gps_emulator', '-p', 'preset:=galileo')
     assert proc.wait(timeout=30) == 2
     text = read_output(proc)
-    assert 'unknown GPS preset' in text and 'Traceback' not in text
+    assert "preset must be one of ('sa_standalone', 'standalone', 'dgps', 'rtk')" in text
+    assert 'Traceback' not in text
+
+
+def test_origin_beyond_its_range_is_refused(start_node, read_output):
+    proc = start_node('robotica_sim', 'gps_emulator', '-p', 'origin.altitude:=200000.0')
+    assert proc.wait(timeout=30) == 2
+    text = read_output(proc)
+    assert 'origin.altitude' in text and 'Traceback' not in text

@@ -90,3 +90,10 @@ def test_unknown_vehicle_type_is_refused(start_node, read_output):
     proc = start_node('robotica_sim', 'simulator', '-p', 'vehicle.type:=hovercraft')
     assert proc.wait(timeout=30) == 2
     assert 'vehicle.type must be one of' in read_output(proc)
+
+
+def test_slip_beyond_its_range_is_refused(start_node, read_output):
+    proc = start_node('robotica_sim', 'simulator', '-p', 'longitudinal_slip:=0.95')
+    assert proc.wait(timeout=30) == 2
+    text = read_output(proc)
+    assert 'longitudinal_slip' in text and 'Traceback' not in text
