@@ -22,6 +22,7 @@ import time
 from typing import Any
 
 import rclpy
+from rclpy._rclpy_pybind11 import RCLError
 from rclpy.clock import Clock, ClockType
 from rclpy.executors import ExternalShutdownException
 from rclpy.experimental import EventsExecutor
@@ -70,16 +71,18 @@ class ViewRelayNode(GuardedNode):
         self.get_logger().info(f'Foxglove WebSocket server on {self.relay.url}')
 
     def _discover(self) -> None:
-        self.relay.replay_latched()
-        for topic, types in self.get_topic_names_and_types():
-            if topic in self._relayed:
-                self.relay.set_latched_depth(topic, self.count_publishers(topic))
-                continue
-            if (topic, types[0]) in self._refused:
-                continue
-            publishers = self.get_publishers_info_by_topic(topic)
-            if publishers:
-                self._subscribe(topic, types[0], publishers)
+        try:
+            self.relay.replay_latched()
+            for topic, types in self.get_topic_names_and_types():
+                if topic in self._relayed:
+                    self.relay.set_latched_depth(topic, self.count_publishers(topic))
+                elif (topic, types[0]) not in self._refused:
+                    publishers = self.get_publishers_info_by_topic(topic)
+                    if publishers:
+                        self._subscribe(topic, types[0], publishers)
+        except RCLError:   # a graph query racing the shutdown of SIGINT/SIGTERM: not an error
+            if self.context.ok():
+                raise
 
     def _subscribe(self, topic: str, msgtype: str, publishers: list[Any]) -> None:
         try:
