@@ -1,5 +1,5 @@
 """
-The Foxglove layout shipped in docs/ (docs/view.md): its panels exist and its paths are real fields.
+The Foxglove layout shipped in docs/ (docs/view.md): its panels exist, its paths are real fields.
 
 A message path of the Foxglove app (``/odom.pose.pose.position.x``) that names no field shows
 an empty plot without an error a user would notice; each one is resolved here on the message
