@@ -10,8 +10,8 @@ from numpy.typing import ArrayLike, NDArray
 from robotica_kin.finite import finite_real
 
 __all__ = ['MAX_ANGULAR_RATE', 'MAX_FORCE_TORQUE', 'MAX_JOINT_ACCELERATION',
-           'MAX_JOINT_POSITION', 'MAX_JOINT_VELOCITY', 'MAX_LATITUDE', 'MAX_LONGITUDE',
-           'MAX_SPEED', 'MAX_TIME_JUMP', 'bounded', 'bounded_array', 'StampGate']
+           'MAX_JOINT_POSITION', 'MAX_JOINT_VELOCITY', 'MAX_JOINTS', 'MAX_LATITUDE',
+           'MAX_LONGITUDE', 'MAX_SPEED', 'MAX_TIME_JUMP', 'bounded', 'bounded_array', 'StampGate']
 
 MAX_SPEED = 100.0              # [m/s] a linear speed (a car on a motorway: 36 m/s)
 MAX_ANGULAR_RATE = 100.0       # [rad/s] a yaw rate or a steering rate (16 turns per second)
@@ -19,6 +19,8 @@ MAX_JOINT_POSITION = 1e4       # [rad | m] a joint position (1600 turns of a rev
 MAX_JOINT_VELOCITY = 1e3       # [rad/s | m/s] a joint velocity
 MAX_JOINT_ACCELERATION = 1e6   # [rad/s² | m/s²] a joint acceleration (0 to 1e3 rad/s in 1 ms)
 MAX_FORCE_TORQUE = 1e6         # [N m | N] a joint torque or force
+MAX_JOINTS = 100               # joints of a robot sent in a message (the book's have at most 7;
+#                                the inverse kinematics of 500 joints took 4 GB and 20 s)
 MAX_LATITUDE = 90.0            # [deg] WGS-84 latitude
 MAX_LONGITUDE = 180.0          # [deg] WGS-84 longitude
 MAX_TIME_JUMP = 3600.0         # [s] a stamp this far from the latest accepted one is refused

@@ -20,7 +20,7 @@ from robotica_kin.forward_kinematics import fkine, link_frames
 from robotica_kin.ros.dh_messages import (declare_robot, dh_table_message, pose_message,
                                           request_robot)
 from robotica_kin.ros.entry_point import run_node
-from robotica_kin.ros.guarded import GuardedNode
+from robotica_kin.ros.guarded import error_text, GuardedNode
 from robotica_kin.ros.parameters import declare
 from robotica_kin.ros.qos import LATCHED_QOS, STREAM_PUB_QOS, STREAM_SUB_QOS
 from robotica_msgs.msg import DHTable
@@ -82,8 +82,8 @@ class ForwardKinematicsNode(GuardedNode):
             response.pose = pose_message(fkine(robot, list(request.q)))
         except ValueError as err:
             response.success = False
-            response.message = str(err)
-            self.get_logger().warn(f'forward_kinematics refused: {err}')
+            response.message = error_text(err)
+            self.get_logger().warn(f'forward_kinematics refused: {response.message}')
             return response
         response.success = True
         return response

@@ -6,9 +6,10 @@ Each ``robotica_msgs/InverseKinematics`` request is solved numerically by
 carries (``dh``), else the node's robot (parameters ``robot`` or ``dh_table``). Zero ``stol``
 and ``ilimit`` mean the defaults 1e-6 and 1000; an empty ``q0`` or ``mask`` means the solver's
 default. A solver that does not converge answers ``converged = false`` with its last iterate and
-a message; bad input (unknown robot, NaN, wrong sizes, a non-unit quaternion, a negative
-``ilimit``) answers ``converged = false``, an empty ``q`` and the reason. The node never stops on
-a request.
+a message; bad input (unknown robot, NaN, wrong sizes, a non-unit quaternion, an ``ilimit``
+outside [0, ``MAX_ILIMIT``], a table of more than ``MAX_JOINTS`` joints) answers
+``converged = false``, an empty ``q`` and the reason (cut to ``ERROR_TEXT_LIMIT`` characters).
+The node never stops on a request, and answers each within seconds.
 """
 import math
 
@@ -16,19 +17,22 @@ from numpy.linalg import LinAlgError
 from robotica_kin.ik import ikine_solve
 from robotica_kin.ros.dh_messages import declare_robot, pose_matrix, request_robot
 from robotica_kin.ros.entry_point import run_node
-from robotica_kin.ros.guarded import GuardedNode
+from robotica_kin.ros.guarded import error_text, GuardedNode
 from robotica_msgs.srv import InverseKinematics
 
 DEFAULT_STOL = 1e-6      # pose-error tolerance used when a request gives 0
 DEFAULT_ILIMIT = 1000    # iterations used when a request gives 0
+MAX_ILIMIT = 10_000      # iterations a request may ask for: 1.6 s for 100 joints (2**31 - 1
+#                          iterations kept the server from answering anyone for hours)
 
 
 def _solver_options(request: InverseKinematics.Request) -> dict:
     """Return the keyword arguments of ``ikine_solve`` for a request, or raise ValueError."""
     if not (math.isfinite(request.stol) and request.stol >= 0.0):
         raise ValueError(f'stol must be finite and >= 0 (0: {DEFAULT_STOL}), got {request.stol}')
-    if request.ilimit < 0:
-        raise ValueError(f'ilimit must be >= 0 (0: {DEFAULT_ILIMIT}), got {request.ilimit}')
+    if not 0 <= request.ilimit <= MAX_ILIMIT:
+        raise ValueError(f'ilimit must be in [0, {MAX_ILIMIT}] (0: {DEFAULT_ILIMIT}), got '
+                         f'{request.ilimit}')
     return {'stol': request.stol or DEFAULT_STOL,
             'ilimit': request.ilimit or DEFAULT_ILIMIT,
             'q0': list(request.q0) or None,
@@ -53,8 +57,8 @@ class InverseKinematicsServer(GuardedNode):
             result = ikine_solve(robot, pose_matrix(request.pose), **options)
         except (ValueError, LinAlgError) as err:
             response.converged = False
-            response.message = str(err)
-            self.get_logger().warn(f'inverse_kinematics refused: {err}')
+            response.message = error_text(err)
+            self.get_logger().warn(f'inverse_kinematics refused: {response.message}')
             return response
         response.q = [float(v) for v in result.q]
         response.converged = bool(result.success)

@@ -15,6 +15,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from rclpy.node import Node
 from rclpy.parameter import Parameter
+from robotica_kin.bounds import MAX_JOINTS
 from robotica_kin.dh import dh_model, DHModel
 from robotica_kin.robots import robot_by_name, ROBOT_NAMES
 from robotica_kin.ros.parameters import declare
@@ -50,8 +51,9 @@ def dh_model_from_message(msg: DHTable) -> DHModel:
     Raises
     ------
     ValueError
-        For a table without rows, a sigma other than REVOLUTE (0) or PRISMATIC (1), non-finite
-        values, or joint names that are not one distinct name per row.
+        For a table without rows or with more than ``MAX_JOINTS`` (robotica_kin.bounds), a sigma
+        other than REVOLUTE (0) or PRISMATIC (1), non-finite values, or joint names that are not
+        one distinct name per row.
 
     Examples
     --------
@@ -60,8 +62,8 @@ def dh_model_from_message(msg: DHTable) -> DHModel:
     [0.0, 1.0]
 
     """
-    if not msg.links:
-        raise ValueError('the DH table has no links')
+    if not 0 < len(msg.links) <= MAX_JOINTS:
+        raise ValueError(f'the DH table must have 1 to {MAX_JOINTS} links, got {len(msg.links)}')
     sigmas = [link.sigma for link in msg.links]
     if any(s not in (DHParameter.REVOLUTE, DHParameter.PRISMATIC) for s in sigmas):
         raise ValueError(f'sigma must be 0 (revolute) or 1 (prismatic), got {sigmas}')

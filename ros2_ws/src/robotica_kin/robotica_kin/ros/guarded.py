@@ -40,12 +40,29 @@ from rclpy.time_source import TimeSource
 from robotica_kin.bounds import StampGate
 from robotica_kin.ros.convert import stamp_to_seconds
 
-__all__ = ['ERROR_LOG_PERIOD', 'GuardedNode', 'GuardedPublisher', 'NonFiniteOutput',
-           'non_finite_fields']
+__all__ = ['ERROR_LOG_PERIOD', 'ERROR_TEXT_LIMIT', 'GuardedNode', 'GuardedPublisher',
+           'NonFiniteOutput', 'error_text', 'non_finite_fields']
 
 ERROR_LOG_PERIOD = 1.0   # [s, wall clock] at most one log line per source and period
+ERROR_TEXT_LIMIT = 500   # characters of an error's text in a log line or a response
 
 _FLOATS = ('float', 'double')
+
+
+def error_text(err: BaseException) -> str:
+    """
+    Return the text of ``err``, cut to ``ERROR_TEXT_LIMIT`` characters.
+
+    An error may quote the input it refuses: a request of a million values once put 5 MB into
+    one log line and its response.
+
+    >>> text = error_text(ValueError('got ' + str([1.0] * 10 ** 6)))
+    >>> len(text), text[-24:]
+    (524, '... (5000004 characters)')
+    """
+    text = str(err)
+    return text if len(text) <= ERROR_TEXT_LIMIT else (
+        f'{text[:ERROR_TEXT_LIMIT]}... ({len(text)} characters)')
 
 
 class NonFiniteOutput(ValueError):
@@ -201,8 +218,8 @@ class GuardedNode(Node):
         last, dropped = self._guard_log.get(source, (-math.inf, 0))
         if now - last >= ERROR_LOG_PERIOD:
             more = f' ({dropped} more since the last report)' if dropped else ''
-            self.get_logger().error(f'{source}: {type(err).__name__}: {err}; message dropped'
-                                    f'{more}')
+            self.get_logger().error(f'{source}: {type(err).__name__}: {error_text(err)}; '
+                                    f'message dropped{more}')
             self._guard_log[source] = (now, 0)
         else:
             self._guard_log[source] = (last, dropped + 1)
@@ -211,7 +228,7 @@ class GuardedNode(Node):
         try:
             self.on_callback_error(source)
         except Exception as safe_err:   # noqa: B902 - the safe output must not kill the node
-            self.get_logger().error(f'{source}: safe output failed: {safe_err}',
+            self.get_logger().error(f'{source}: safe output failed: {error_text(safe_err)}',
                                     throttle_duration_sec=ERROR_LOG_PERIOD)
 
     # -- guarded construction ----------------------------------------------------------------

@@ -14,6 +14,7 @@ import pytest
 from robotica_kin.ros.convert import seconds_to_stamp
 from robotica_kin.ros.guarded import non_finite_fields
 from robotica_kin.ros.hostile import fuzz, hostile_message
+from robotica_msgs.msg import DHParameter, DHTable
 from robotica_msgs.srv import ForwardKinematics, InverseKinematics
 from sensor_msgs.msg import JointState
 
@@ -67,3 +68,41 @@ def test_hostile_requests(node_name, srv_type, service, valid, answered, start_n
     assert response is not None and answered(response)
     assert not non_finite_fields(response)
     assert 'Traceback' not in read_output(proc)
+
+
+BIG = 10 ** 6
+FAR = Pose(position=Point(x=100.0), orientation=Quaternion(w=1.0))   # beyond the PUMA's reach
+LONG_TABLE = DHTable(links=[DHParameter(a=0.01)] * 101)              # MAX_JOINTS = 100
+
+
+@pytest.mark.parametrize('node_name, srv_type, service, requests, valid', [
+    ('fk_node', ForwardKinematics, '/fk_node/forward_kinematics', [
+        ForwardKinematics.Request(q=[0.1] * BIG),
+        ForwardKinematics.Request(q=[]),
+        ForwardKinematics.Request(dh=LONG_TABLE, q=[0.1] * 101),
+        ForwardKinematics.Request(robot='p' * 10 ** 5, q=[0.1] * 6)],
+     ForwardKinematics.Request(q=[0.1] * 6)),
+    ('ik_server', InverseKinematics, '/ik_server/inverse_kinematics', [
+        InverseKinematics.Request(pose=FAR, ilimit=2 ** 31 - 1),   # hours of iterations
+        InverseKinematics.Request(pose=FAR, mask=[1.0] * BIG),     # 5 MB of message and log
+        InverseKinematics.Request(pose=FAR, q0=[0.1] * BIG),
+        InverseKinematics.Request(pose=FAR, dh=LONG_TABLE)],       # 500 joints: 4 GB, 20 s
+     InverseKinematics.Request(pose=Pose(position=Point(x=0.4, y=0.1, z=0.3),
+                                         orientation=Quaternion(w=1.0)))),
+])
+def test_requests_of_absurd_size_are_refused_at_once(node_name, srv_type, service, requests,
+                                                     valid, start_node, ros_node, call,
+                                                     read_output):
+    node, executor = ros_node
+    proc = start_node('robotica_kin', node_name)
+    client = node.create_client(srv_type, service)
+    for request in requests:
+        start = time.monotonic()
+        response = call(executor, client, request, attempts=1, timeout=5.0)
+        assert response is not None, read_output(proc)[-2000:]
+        assert not getattr(response, 'success', False) and not getattr(response, 'q', [])
+        assert time.monotonic() - start < 3.0 and 0 < len(response.message) < 600
+    assert call(executor, client, valid) is not None
+    text = read_output(proc)
+    assert proc.poll() is None and 'Traceback' not in text
+    assert max(map(len, text.splitlines())) < 1000
