@@ -12,7 +12,9 @@ import pytest
 from robotica_ctrl.mobile.path import PolylinePath
 from robotica_ctrl.mobile.path_shapes import straight_line
 from robotica_ctrl.mobile.tracker_base import TrackerOutput
-from robotica_ctrl.mobile.tracking_laws import law_defaults, LAW_PARAMETERS, LAWS, make_law
+from robotica_ctrl.mobile.tracking_laws import (check_gains, law_defaults, law_for_path,
+                                                LAW_PARAMETERS, LAWS, make_law)
+from robotica_kin.parameter_specs import ParameterError
 
 STEP = 0.01   # [s]
 
@@ -135,3 +137,22 @@ def test_open_loop_is_a_law_of_the_registry():
     with pytest.raises(ValueError, match='increase'):
         make_law('open_loop', path, {'times': [0.0, 0.0], 'linear': [1.0, 1.0],
                                      'angular': [0.0, 0.0]})
+
+
+def test_a_path_is_timed_when_its_stamps_increase_strictly():
+    points = [[0.0, 0.0], [1.0, 0.0], [1.0, 0.0], [2.0, 0.0]]   # a duplicate point (a stop)
+    _, path, timed = law_for_path('trajectory_tracking', points, times=[0.0, 1.0, 2.0, 3.0])
+    assert timed and path.length == 2.0
+    assert not law_for_path('trajectory_tracking', points, times=[0.0, 1.0, 1.0, 3.0])[2]
+    assert not law_for_path('pure_pursuit', points)[2]
+    with pytest.raises(ValueError, match='at least 2 distinct points'):
+        law_for_path('pure_pursuit', [[1.0, 1.0], [1.0, 1.0]])
+
+
+def test_gains_are_checked_against_their_specs_then_together():
+    with pytest.raises(ParameterError) as info:
+        check_gains('pure_pursuit', {'lookahead_distance': 0.0})
+    assert (info.value.name, info.value.reason) == ('lookahead_distance',
+                                                    'must be in [0.01, 100], got 0.0')
+    with pytest.raises(ValueError, match='minimum <= maximum'):
+        check_gains('adaptive_pure_pursuit', {'min_lookahead': 3.0, 'max_lookahead': 1.0})

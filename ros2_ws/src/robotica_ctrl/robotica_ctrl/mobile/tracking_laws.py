@@ -38,6 +38,7 @@ from dataclasses import replace
 import math
 from typing import Any, Callable, Mapping
 
+import numpy as np
 from numpy.typing import ArrayLike
 from robotica_ctrl.mobile.adaptive_lookahead import (adaptive_params, AdaptivePurePursuit,
                                                      LOOKAHEAD_RULES, LookaheadRule)
@@ -56,7 +57,7 @@ from robotica_kin.mobile.vehicles import GEOMETRY_PARAMETERS
 from robotica_kin.parameter_specs import check_parameters, ParameterSpec
 
 __all__ = ['COMMAND_TYPES', 'LAWS', 'LAW_PARAMETERS', 'POSE_SOURCES', 'TRACKER_PARAMETERS',
-           'check_gains', 'law_defaults', 'make_law', 'steering_angle']
+           'check_gains', 'law_defaults', 'law_for_path', 'make_law', 'steering_angle']
 
 LAWS = ('pure_pursuit', 'adaptive_pure_pursuit', 'quintic', 'trajectory_tracking', 'frenet',
         'gpc')
@@ -319,3 +320,35 @@ def check_gains(law: str, gains: Mapping[str, Any]) -> None:
     """
     check_parameters(_law_specs(law), gains)
     make_law(law, PolylinePath([[0.0, 0.0], [1.0, 0.0]]), gains)
+
+
+def law_for_path(law: str, points: ArrayLike, gains: Mapping[str, Any] | None = None,
+                 times: ArrayLike | None = None) -> tuple[TrackingLaw, PolylinePath, bool]:
+    """
+    Return the law ``law`` for the path through ``points`` (N, 2) [m], the path, and if timed.
+
+    What the path tracker does with each path it receives: ``times`` (N,) [s], the stamps of
+    the path's poses, make it a trajectory when they increase strictly (trajectory tracking
+    follows them at the arc length of each point, duplicates included); otherwise they are
+    ignored.
+
+    Raises
+    ------
+    ValueError
+        For a path of fewer than two distinct points, or as :func:`make_law`.
+
+    Examples
+    --------
+    >>> law, path, timed = law_for_path('pure_pursuit', [[0.0, 0.0], [5.0, 0.0]],
+    ...                                 times=[0.0, 0.0])
+    >>> path.length, timed
+    (5.0, False)
+
+    """
+    xy = np.asarray(points, dtype=np.float64).reshape(-1, 2)
+    stamps = np.asarray(times if times is not None else [], dtype=np.float64)
+    timed = stamps.size == len(xy) >= 2 and bool(np.all(np.diff(stamps) > 0.0))
+    path = PolylinePath(xy)
+    stations = np.concatenate(([0.0], np.cumsum(np.hypot(*np.diff(xy, axis=0).T))))
+    return make_law(law, path, gains, stamps if timed else None,
+                    stations if timed else None), path, timed

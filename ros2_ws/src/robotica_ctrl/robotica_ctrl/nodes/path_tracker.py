@@ -33,12 +33,10 @@ import math
 
 from geometry_msgs.msg import Point, Twist
 from nav_msgs.msg import Odometry, Path
-import numpy as np
 from rcl_interfaces.msg import SetParametersResult
 from rclpy.experimental import EventsExecutor
-from robotica_ctrl.mobile.path import PolylinePath
 from robotica_ctrl.mobile.tracker_base import TrackingLaw
-from robotica_ctrl.mobile.tracking_laws import (check_gains, LAW_PARAMETERS, make_law,
+from robotica_ctrl.mobile.tracking_laws import (check_gains, law_for_path, LAW_PARAMETERS,
                                                 steering_angle, TRACKER_PARAMETERS)
 from robotica_kin.parameter_specs import check_parameters, ParameterError
 from robotica_kin.ros.convert import path_points, pose2d_from_odometry, stamp_to_seconds
@@ -125,14 +123,10 @@ class PathTrackerNode(GuardedNode):
 
     # -- inputs ------------------------------------------------------------------------------
     def _on_path(self, msg: Path) -> None:
-        points = path_points(msg)
-        times = np.array([stamp_to_seconds(p.header.stamp) for p in msg.poses])
-        timed = times.size >= 2 and bool(np.all(np.diff(times) > 0.0))
+        times = [stamp_to_seconds(p.header.stamp) for p in msg.poses]
         try:
-            path = PolylinePath(points)
-            stations = np.concatenate(([0.0], np.cumsum(np.hypot(*np.diff(points, axis=0).T))))
-            law = make_law(self._law_name, path, self._gains, times if timed else None,
-                           stations if timed else None)
+            law, path, timed = law_for_path(self._law_name, path_points(msg), self._gains,
+                                            times)
         except ValueError as err:
             self.get_logger().error(f'path refused: {err}')
             self._law = None

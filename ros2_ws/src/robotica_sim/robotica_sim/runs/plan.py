@@ -20,9 +20,10 @@ from typing import Any, Callable, Mapping
 import numpy as np
 from robotica_ctrl.joint_control.control_laws import make_joint_law
 from robotica_ctrl.mobile import path_shapes
-from robotica_ctrl.mobile.path import PolylinePath
-from robotica_ctrl.mobile.tracking_laws import check_gains, LAW_PARAMETERS, TRACKER_PARAMETERS
+from robotica_ctrl.mobile.tracking_laws import (check_gains, law_for_path, LAW_PARAMETERS,
+                                                TRACKER_PARAMETERS)
 from robotica_ctrl.trajectory.joint_reference import reference_samples
+from robotica_ctrl.trajectory.sampled_trajectory import SampledTrajectory
 from robotica_kin.dh import as_dyn_model, DHModel
 from robotica_kin.mobile.vehicles import GEOMETRY_PARAMETERS, STEERED_TYPES
 from robotica_kin.parameter_specs import check_parameters, ParameterError
@@ -265,7 +266,7 @@ def _plan_arm(scenario: Scenario) -> list[NodeSpec]:
                                      **{node: f'reference.{key}'
                                         for key, node in REFERENCE_KEYS.items()},
                                      'sample_period': 'reference.sample_period'},
-                lambda: reference_samples(reference))
+                lambda: SampledTrajectory(*reference_samples(reference)))   # as the controller
     _node_check(where, 'controller', {'law': 'controller.law',
                                       **{key: f'controller.{key}'
                                          for key in scenario.controller.gains}},
@@ -376,10 +377,14 @@ def _tracker_parameters(scenario: Scenario) -> dict:
         params[key if key in TRACKER_NODE_KEYS else f'{law}.{key}'] = value
     keys = {key: f'tracker.{key}' for key in scenario.tracker.gains}
     _node_check(where, 'tracker', keys, lambda: check_parameters(TRACKER_PARAMETERS, params))
-    _node_check(where, 'tracker', keys, lambda: check_gains(law, {
-        key.removeprefix(f'{law}.'): value for key, value in params.items()
-        if key.startswith(f'{law}.')}))
+    _node_check(where, 'tracker', keys, lambda: check_gains(law, _law_gains(law, params)))
     return params
+
+
+def _law_gains(law: str, params: dict) -> dict:
+    """Return the gains of ``law`` (by gain name) among the tracker's parameters."""
+    return {key.removeprefix(f'{law}.'): value for key, value in params.items()
+            if key.startswith(f'{law}.')}
 
 
 def _plan_mobile(scenario: Scenario) -> list[NodeSpec]:
@@ -388,10 +393,11 @@ def _plan_mobile(scenario: Scenario) -> list[NodeSpec]:
     x0, y0, theta0 = robot.initial_pose
     pose = {'initial_pose.x': x0, 'initial_pose.y': y0, 'initial_pose.theta': theta0}
     points, times = reference_path(scenario)
-    # The tracker refuses a path of fewer than two distinct points when it arrives (not at
-    # start-up): the robot would hold still for the whole run.
-    _node_check(where, 'path', {}, lambda: PolylinePath(points))
     gains = _tracker_parameters(scenario)
+    # The tracker takes or refuses the path when it arrives, not at start-up: refused (a path
+    # of fewer than two distinct points), the robot would hold still for the whole run.
+    _node_check(where, 'path', {}, lambda: law_for_path(
+        scenario.tracker.law, points, _law_gains(scenario.tracker.law, gains), times))
     simulator = {
         'vehicle.type': robot.type, **{f'vehicle.{name}': getattr(robot, ROBOT_KEYS[name])
                                        for name in GEOMETRY_PARAMETERS},
