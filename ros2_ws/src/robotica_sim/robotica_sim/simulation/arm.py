@@ -28,7 +28,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 import pinocchio as pin
 from robotica_kin.dh import as_dyn_model, DHModel
-from robotica_kin.dynamics import DEFAULT_GRAVITY, JointFriction, set_gravity
+from robotica_kin.dynamics import DEFAULT_GRAVITY, inertia, JointFriction, set_gravity
 from robotica_kin.finite import all_finite
 from robotica_kin.native_library import address, ERROR_SIZE, native_library
 from robotica_kin.parameter_specs import (named_error, parameter_values, ParameterError,
@@ -284,4 +284,10 @@ def arm_simulation(robot: DHModel, parameters: Mapping[str, Any],
                                      respect_limits=values['respect_limits'], **sizes)
     except ValueError as err:
         raise named_error(err, ('step_period', 'gravity', *sizes, *given)) from None
+    # ABA inverts M(q): a singular one (a link of zero mass, point masses in line) gives NaN.
+    eigenvalues = np.linalg.eigvalsh(inertia(robot, start['initial_positions']))
+    if not eigenvalues[0] > 1e-9 * max(eigenvalues[-1], 1e-300):
+        raise ValueError(f'the mass matrix M(q0) is singular (eigenvalues '
+                         f'{np.round(eigenvalues, 12).tolist()}): a link without mass or '
+                         'inertia cannot be simulated')
     return ArmSimulation(robot, params, start['initial_positions'], start['initial_velocities'])

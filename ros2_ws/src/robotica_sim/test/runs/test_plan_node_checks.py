@@ -79,6 +79,8 @@ CASES = [
      'arm.initial_positions must have shape (2,)'),
     ('payload of 20 t', 'ej8_2', {'arm.payload': {'mass': 20000, 'com': [0, 0, 0], 'time': 1}},
      'arm.payload.mass must be in [0, 10000], got 20000.0'),
+    ('a massless link', 'ej8_2', {'arm.masses': [2.0, 0.0]},
+     'arm: the mass matrix M(q0) is singular'),
     ('arm step of 0.5 s', 'ej8_2', {'step_period': 0.5},
      'step_period must be in (0, 0.1] s, got 0.5'),
     # path_tracker (robotica_ctrl.mobile.tracking_laws)
