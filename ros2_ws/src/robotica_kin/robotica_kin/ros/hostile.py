@@ -3,8 +3,9 @@ Hostile messages of any type, for the fuzz tests of the nodes (and of a user's o
 
 :func:`hostile_message` fills every field of a message with a value drawn from what a broken or
 malicious stack may send: NaN, ±inf, ±1e308, zero and ordinary numbers for floats; the extremes
-of integers; absurd stamps (``sec`` = ±2**31); empty, short and long sequences; empty and odd
-strings. Seeded through the caller's ``random.Random``: a failure is replayed by its seed.
+of integers; absurd stamps (``sec`` = ±2**31, 0, 1e6 s away; ``nanosec`` >= 1e9, which is
+malformed); empty, short (one short of a 6-joint arm) and long sequences; empty, odd and long
+strings (frame ids). Seeded through the caller's ``random.Random``: a failure is replayed by its seed.
 :func:`fuzz` drives a node with them and then with valid input.
 """
 import importlib
@@ -22,7 +23,10 @@ _INTS = {'int8': (-2 ** 7, 2 ** 7 - 1), 'int16': (-2 ** 15, 2 ** 15 - 1),
          'int32': (-2 ** 31, 2 ** 31 - 1), 'int64': (-2 ** 63, 2 ** 63 - 1),
          'uint8': (0, 2 ** 8 - 1), 'uint16': (0, 2 ** 16 - 1), 'uint32': (0, 2 ** 32 - 1),
          'uint64': (0, 2 ** 64 - 1), 'octet': (0, 255), 'char': (0, 255), 'byte': (0, 255)}
-_SIZES = (0, 1, 2, 3, 6, 7, 100)
+_SIZES = (0, 1, 2, 3, 5, 6, 7, 100)
+_SECONDS = (-2 ** 31, 2 ** 31 - 1, 0, 1, 10 ** 6)
+_NANOSECONDS = (0, 999_999_999, 1_000_000_000, 2 ** 32 - 1)
+_STRINGS = ('', 'x', ' ', '/', '\u00e9', 'a' * 100, 'f' * 10_000)
 # Inputs are published transient-local, which serves volatile and transient-local readers alike.
 _PUB_QOS = QoSProfile(depth=10, reliability=ReliabilityPolicy.RELIABLE,
                       durability=DurabilityPolicy.TRANSIENT_LOCAL)
@@ -39,7 +43,7 @@ def _scalar(kind: str, rng: random.Random) -> Any:
     if kind == 'boolean':
         return rng.random() < 0.5
     if kind.startswith('string') or kind.startswith('wstring'):
-        return rng.choice(('', 'x', ' ', '\u00e9', 'a' * 100))
+        return rng.choice(_STRINGS)
     return _message(kind, rng)
 
 
@@ -76,8 +80,8 @@ def hostile_message(msg_type: type, rng: random.Random, template: Any = None,
             base, size = kind[:-1].split('[')
             value = [_scalar(base, rng) for _ in range(int(size))]
         elif kind == 'builtin_interfaces/Time' and name == 'stamp':
-            value = _message_type(kind)(sec=rng.choice((-2 ** 31, 2 ** 31 - 1, 0, 1)),
-                                        nanosec=rng.choice((0, 999_999_999)))
+            value = _message_type(kind)(sec=rng.choice(_SECONDS),
+                                        nanosec=rng.choice(_NANOSECONDS))
         else:
             value = _scalar(kind, rng)
         try:
