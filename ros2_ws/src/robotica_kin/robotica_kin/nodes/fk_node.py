@@ -11,12 +11,12 @@ of any built-in robot or DH table, or of the node's own robot when the request n
 
 The robot is the built-in ``robot`` or, when that is '', the flattened HEMERO table
 ``dh_table``; an unknown robot or a malformed table stops the node at start-up (exit code 2).
-A joint-state message lacking a joint or with a NaN position is skipped with a warning.
+A joint-state message lacking a joint, naming one twice, with not one position per name or a
+NaN position is refused (``robotica_kin.ros.convert.joint_state_values``; the guard logs it).
 """
-import math
-
 from geometry_msgs.msg import PoseArray, PoseStamped
 from robotica_kin.forward_kinematics import fkine, link_frames
+from robotica_kin.ros.convert import joint_state_values
 from robotica_kin.ros.dh_messages import (declare_robot, dh_table_message, pose_message,
                                           request_robot)
 from robotica_kin.ros.entry_point import run_node
@@ -26,8 +26,6 @@ from robotica_kin.ros.qos import LATCHED_QOS, STREAM_PUB_QOS, STREAM_SUB_QOS
 from robotica_msgs.msg import DHTable
 from robotica_msgs.srv import ForwardKinematics
 from sensor_msgs.msg import JointState
-
-WARN_PERIOD = 5.0   # [s] between repeated warnings about bad joint states
 
 
 class ForwardKinematicsNode(GuardedNode):
@@ -54,17 +52,7 @@ class ForwardKinematicsNode(GuardedNode):
                                f'{list(self._robot.joint_names)}')
 
     def _on_joint_states(self, msg: JointState) -> None:
-        index = {name: i for i, name in enumerate(msg.name) if i < len(msg.position)}
-        missing = [j for j in self._robot.joint_names if j not in index]
-        if missing:
-            self.get_logger().warn(f'joint_states lacks positions of {missing}; skipped',
-                                   throttle_duration_sec=WARN_PERIOD)
-            return
-        q = [msg.position[index[j]] for j in self._robot.joint_names]
-        if not all(math.isfinite(v) for v in q):
-            self.get_logger().warn(f'non-finite joint position in {q}; skipped',
-                                   throttle_duration_sec=WARN_PERIOD)
-            return
+        (q,) = joint_state_values(msg, self._robot.joint_names)   # refused: the guard logs it
         frames = link_frames(self._robot, q)
         tool = fkine(self._robot, q)
         pose = PoseStamped(pose=pose_message(tool))

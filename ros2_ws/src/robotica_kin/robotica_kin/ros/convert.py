@@ -4,13 +4,16 @@ Conversions between ROS 2 messages and the NumPy values of the robotica cores.
 Planar poses are ``(x, y, theta)`` arrays [m, m, rad] in REP-103 (heading from the x axis,
 counter-clockwise); times are float seconds. Used by the nodes of every robotica package.
 """
+from collections import Counter
 import math
+from typing import Sequence
 
 from builtin_interfaces.msg import Duration, Time
 from geometry_msgs.msg import PoseStamped, Quaternion
 from nav_msgs.msg import Odometry, Path
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
+from sensor_msgs.msg import JointState
 
 
 NANOSECONDS_PER_SECOND = 1_000_000_000
@@ -51,6 +54,45 @@ def seconds_to_stamp(t: float, kind: type = Time) -> Time:
     """
     ns = round(t * 1e9)
     return kind(sec=ns // NANOSECONDS_PER_SECOND, nanosec=ns % NANOSECONDS_PER_SECOND)
+
+
+def joint_state_values(msg: JointState, joints: Sequence[str],
+                       fields: Sequence[str] = ('position',)) -> NDArray[np.float64]:
+    """
+    Return the ``fields`` of ``joints`` in a ``sensor_msgs/JointState``, shape (fields, joints).
+
+    The joints may come in any order, among others (ignored). A JointState names each joint once
+    and gives each field one value per name: a message that names a joint twice (which value
+    would be meant?), whose asked-for field has not one value per name, that lacks one of
+    ``joints`` or holds a non-finite value there is refused with ValueError.
+
+    >>> msg = JointState(name=['b', 'a', 'c'], position=[2.0, 1.0, 3.0])
+    >>> joint_state_values(msg, ['a', 'b']).tolist()
+    [[1.0, 2.0]]
+    >>> joint_state_values(JointState(name=['a', 'b', 'a'], position=[1.0, 2.0, 9.0]), ['a'])
+    Traceback (most recent call last):
+    ...
+    ValueError: JointState names ['a'] more than once
+    """
+    names = list(msg.name)
+    index = {name: i for i, name in enumerate(names)}
+    if len(index) != len(names):
+        twice = sorted(name for name, count in Counter(names).items() if count > 1)
+        raise ValueError(f'JointState names {twice[:10]} more than once')
+    for field in fields:
+        if len(getattr(msg, field)) != len(names):
+            raise ValueError(f'JointState has {len(names)} names but '
+                             f'{len(getattr(msg, field))} {field} values')
+    missing = [joint for joint in joints if joint not in index]
+    if missing:
+        raise ValueError(f'JointState lacks {" and ".join(fields)} of {missing}')
+    rows = [index[joint] for joint in joints]
+    values = np.array([[getattr(msg, field)[i] for i in rows] for field in fields],
+                      dtype=np.float64).reshape(len(fields), len(rows))
+    for field, row in zip(fields, values):
+        if not np.isfinite(row).all():
+            raise ValueError(f'non-finite joint {field} in {row}')
+    return values
 
 
 def yaw_to_quaternion(yaw: float) -> Quaternion:

@@ -111,15 +111,20 @@ def test_end_effector_pose_and_link_frames(fk, publish):
             np.testing.assert_allclose(_matrix(pose), T, atol=1e-9)
 
 
-def test_missing_or_nan_joint_is_skipped(fk, spin, publish, read_output):
+def test_malformed_joint_states_are_refused(fk, spin, publish, read_output):
     proc, node, executor, joints, poses, links = fk
-    joints.publish(_joint_state(PUMA_JOINTS[:5], np.zeros(5), sec=1))
-    joints.publish(_joint_state(PUMA_JOINTS, [0.0, math.nan, 0.0, 0.0, 0.0, 0.0], sec=2))
+    for bad, reason in [
+            (_joint_state(PUMA_JOINTS[:5], np.zeros(5), sec=1), "lacks position of ['joint_6']"),
+            (_joint_state(PUMA_JOINTS, [0.0, math.nan, 0.0, 0.0, 0.0, 0.0], sec=2),
+             'non-finite joint position'),
+            (_joint_state(PUMA_JOINTS + ['joint_1'], [0.0] * 6 + [2.0], sec=2),   # which joint_1?
+             "names ['joint_1'] more than once"),
+            (JointState(name=PUMA_JOINTS, position=[0.0] * 7), '6 names but 7 position values')]:
+        # The guard logs one refusal per topic and second: resend until this one is logged.
+        assert publish(executor, joints, bad, lambda: reason in read_output(proc)), reason
     assert publish(executor, joints, _joint_state(PUMA_JOINTS, np.zeros(6), sec=3), lambda: poses)
     spin(executor, lambda: False, timeout=0.5)
-    assert {p.header.stamp.sec for p in poses} == {3}   # 1 and 2 dropped
-    text = read_output(proc)
-    assert "lacks positions of ['joint_6']" in text and 'non-finite joint position' in text
+    assert {p.header.stamp.sec for p in poses} == {3}   # the malformed ones dropped
     assert proc.poll() is None
 
 
