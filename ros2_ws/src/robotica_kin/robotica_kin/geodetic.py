@@ -32,10 +32,11 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from robotica_kin.finite import finite_real
+from robotica_kin.parameter_specs import ParameterSpec
 
 __all__ = [
-    'WGS84_A', 'WGS84_B', 'WGS84_E2', 'WGS84_F', 'GeodeticOrigin', 'ecef_to_geodetic',
-    'geodetic_to_ecef',
+    'ORIGIN_PARAMETERS', 'WGS84_A', 'WGS84_B', 'WGS84_E2', 'WGS84_F', 'GeodeticOrigin',
+    'ecef_to_geodetic', 'geodetic_to_ecef',
 ]
 
 WGS84_A = 6378137.0
@@ -318,3 +319,14 @@ class GeodeticOrigin:
         e, n, u = _broadcast(('east', 'north', 'up'), east, north, up)
         ecef = self.ecef + np.stack([e, n, u], axis=-1) @ self.rotation_enu_ecef
         return ecef_to_geodetic(ecef[..., 0], ecef[..., 1], ecef[..., 2])
+
+
+ORIGIN_PARAMETERS: dict[str, ParameterSpec] = {
+    'origin.latitude': ParameterSpec(37.41, 'Latitude of the world origin [deg] (default: '
+                                     'Seville)', -90.0, 90.0),
+    'origin.longitude': ParameterSpec(-6.0, 'Longitude of the world origin [deg]',
+                                      -180.0, 180.0),
+    'origin.altitude': ParameterSpec(10.0, 'Height of the origin above the WGS-84 ellipsoid '
+                                     '[m]', -1e4, 1e5),
+}
+"""A node's :class:`GeodeticOrigin` as parameters (the GPS emulator's, the odometry's)."""

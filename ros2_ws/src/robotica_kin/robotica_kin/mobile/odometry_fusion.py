@@ -33,6 +33,7 @@ would log comes back as :class:`FusionEvent` values. Everything is in REP-103 (Î
 counter-clockwise), SI units; the pose lives in ``odom``, the twist in ``base_link`` (REP-105).
 """
 
+import dataclasses
 from dataclasses import dataclass, field
 import math
 import numbers
@@ -43,16 +44,30 @@ from numpy.typing import ArrayLike, NDArray
 
 from robotica_kin.bounds import MAX_SPEED, MAX_TIME_JUMP, StampGate
 from robotica_kin.finite import finite_real
+from robotica_kin.geodetic import ORIGIN_PARAMETERS
 from robotica_kin.mobile.ekf_localization import (EkfLocalization, increment_between_poses,
                                                   OdometryNoise)
 from robotica_kin.mobile.odometry import odometry_increment, ODOMETRY_METHODS
+from robotica_kin.mobile.vehicles import GEOMETRY_PARAMETERS, POSE_PARAMETERS
+from robotica_kin.parameter_specs import ParameterSpec
 from robotica_kin.types import Pose2D
 
 __all__ = ['EVENT_KINDS', 'FusionEvent', 'GYRO_WAIT_READINGS', 'HEADING_SOURCES',
-           'JUMP_CONFIRMATIONS', 'OdometryEstimate', 'OdometryFusion', 'OdometryFusionParams',
-           'PENDING_LIMIT', 'SENSORS', 'STAMP_TOLERANCE', 'metres_per_tick']
+           'JUMP_CONFIRMATIONS', 'ODOMETRY_PARAMETERS', 'OdometryEstimate', 'OdometryFusion',
+           'OdometryFusionParams', 'PENDING_LIMIT', 'SENSORS', 'STAMP_TOLERANCE',
+           'metres_per_tick']
 
 HEADING_SOURCES = ('encoders', 'gyro')
+ODOMETRY_PARAMETERS: dict[str, ParameterSpec] = {
+    'wheel_radius': dataclasses.replace(GEOMETRY_PARAMETERS['wheel_radius'],
+                                        description='Nominal wheel radius c [m], book (4.109)'),
+    'wheel_separation': dataclasses.replace(
+        GEOMETRY_PARAMETERS['track'],
+        description='Nominal track b between the odometry wheels [m], book (4.110)'),
+    **POSE_PARAMETERS, **ORIGIN_PARAMETERS,
+}
+"""The odometry node's geometry, initial pose (odom frame) and geodetic origin: the ranges of
+the simulated vehicle's (:data:`~robotica_kin.mobile.vehicles.GEOMETRY_PARAMETERS`)."""
 """Where the heading increments come from (:attr:`OdometryFusionParams.heading_source`)."""
 
 SENSORS = ('position', 'heading')

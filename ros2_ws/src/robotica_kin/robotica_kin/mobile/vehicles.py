@@ -46,8 +46,8 @@ from robotica_kin.mobile.unicycle import _vector
 from robotica_kin.parameter_specs import ParameterSpec
 from robotica_kin.types import Vector
 
-__all__ = ['GEOMETRY_PARAMETERS', 'STEERED_TYPES', 'VEHICLE_TYPES', 'VehicleGeometry',
-           'VehicleKinematics', 'as_command', 'vehicle_kinematics']
+__all__ = ['GEOMETRY_PARAMETERS', 'POSE_PARAMETERS', 'STEERED_TYPES', 'VEHICLE_TYPES',
+           'VehicleGeometry', 'VehicleKinematics', 'as_command', 'vehicle_kinematics']
 
 VEHICLE_TYPES = ('differential', 'synchronous', 'skid_steer', 'omni_three', 'mecanum',
                  'tricycle', 'bicycle', 'ackermann')
@@ -100,6 +100,11 @@ GEOMETRY_PARAMETERS: dict[str, ParameterSpec] = {
 }
 """The fields of :class:`VehicleGeometry` as a simulator's parameters: what a simulated vehicle
 may be (its own checks allow any size; these bound the simulated ones)."""
+POSE_PARAMETERS: dict[str, ParameterSpec] = {
+    f'initial_pose.{axis}': ParameterSpec(0.0, description, -1e6, 1e6)
+    for axis, description in (('x', 'Initial x [m]'), ('y', 'Initial y [m]'),
+                              ('theta', 'Initial heading [rad], REP-103 (from the x axis)'))}
+"""The initial pose of a vehicle as parameters (the simulator's, the odometry's)."""
 
 
 class VehicleKinematics(ABC):

@@ -25,6 +25,7 @@ from robotica_ctrl.mobile.tracking_laws import (check_gains, law_for_path, LAW_P
 from robotica_ctrl.trajectory.joint_reference import reference_samples
 from robotica_ctrl.trajectory.sampled_trajectory import SampledTrajectory
 from robotica_kin.dh import as_dyn_model, DHModel
+from robotica_kin.mobile.odometry_fusion import ODOMETRY_PARAMETERS
 from robotica_kin.mobile.vehicles import GEOMETRY_PARAMETERS, STEERED_TYPES
 from robotica_kin.parameter_specs import check_parameters, ParameterError
 from robotica_kin.robots import puma560, robot_by_name, two_link_arm
@@ -287,6 +288,11 @@ def _plan_arm(scenario: Scenario) -> list[NodeSpec]:
     ]
 
 
+ORIGIN_KEYS = {f'origin.{name}': f'sensors.gps.origin[{i}] ({name})'
+               for i, name in enumerate(('latitude', 'longitude', 'altitude'))}
+"""The geodetic origin's parameters (GPS emulator, odometry) by their scenario keys."""
+
+
 def _mobile_sensors(scenario: Scenario) -> list[NodeSpec]:
     """Return the sensor emulators of a mobile run, each seeded from the scenario's seed."""
     where = scenario.source or scenario.name
@@ -310,9 +316,7 @@ def _mobile_sensors(scenario: Scenario) -> list[NodeSpec]:
             **compass, 'seed': scenario.seed * 10 + 3}))
     if sensors.gps.enabled:
         gps = {'preset': sensors.gps.preset, **_origin(scenario)}
-        _node_check(where, 'sensors.gps', {'preset': 'sensors.gps.preset', **{
-            f'origin.{name}': f'sensors.gps.origin[{i}] ({name})'
-            for i, name in enumerate(('latitude', 'longitude', 'altitude'))}},
+        _node_check(where, 'sensors.gps', {'preset': 'sensors.gps.preset', **ORIGIN_KEYS},
                     lambda: gps_configuration(gps))
         nodes.append(NodeSpec('robotica_sim', 'gps_emulator', 'gps_emulator', {
             **gps, 'seed': scenario.seed * 10 + 4}))
@@ -335,6 +339,8 @@ def _gps_bias(scenario: Scenario) -> dict:
             'gps_bias.white_stddev': params.white_stddev}
 
 
+POSE_KEYS = {f'initial_pose.{axis}': f'robot.initial_pose[{i}] ({axis})'
+             for i, axis in enumerate(('x', 'y', 'theta'))}
 ROBOT_KEYS = {'wheel_radius': 'wheel_radius', 'track': 'wheel_separation',
               **{name: name for name in ('wheelbase', 'base_radius', 'half_length',
                                          'max_steering_angle', 'icr_scale')}}
@@ -344,9 +350,12 @@ SIMULATOR_KEYS = {'vehicle.type': 'robot.type',
                   **{key: f'robot.{key}' for key in ('traction_time_constant',
                                                      'steering_time_constant',
                                                      'longitudinal_slip')},
-                  **{f'initial_pose.{axis}': f'robot.initial_pose[{i}] ({axis})'
-                     for i, axis in enumerate(('x', 'y', 'theta'))}}
+                  **POSE_KEYS}
 """The vehicle simulator's parameters that come from the scenario: their scenario keys."""
+ODOMETRY_KEYS = {'wheel_radius': 'robot.wheel_radius x (1 + odometry.wheel_radius_error)',
+                 'wheel_separation': 'robot.wheel_separation x (1 + odometry.track_error)',
+                 **POSE_KEYS, **ORIGIN_KEYS}
+"""The odometry's parameters that come from the scenario: their scenario keys."""
 
 
 def _tracker_parameters(scenario: Scenario) -> dict:
@@ -409,6 +418,15 @@ def _plan_mobile(scenario: Scenario) -> list[NodeSpec]:
     _node_check(where, 'robot', SIMULATOR_KEYS,
                 lambda: vehicle_simulation(simulator, scenario.step_period))
     odometry = scenario.odometry
+    estimator = {
+        'wheel_radius': robot.wheel_radius * (1.0 + odometry.wheel_radius_error),
+        'wheel_separation': robot.wheel_separation * (1.0 + odometry.track_error),
+        'integration_method': odometry.integration_method,
+        'heading_source': odometry.heading_source, 'fuse_gps': odometry.fuse_gps,
+        'fuse_compass': odometry.fuse_compass, **_origin(scenario), **_gps_bias(scenario),
+        'odom_frame_id': scenario.path.frame_id, **pose}
+    _node_check(where, 'odometry', ODOMETRY_KEYS,
+                lambda: check_parameters(ODOMETRY_PARAMETERS, estimator))
     steered = robot.type in STEERED_TYPES
     return [
         NodeSpec('robotica_ctrl', 'path_publisher', 'path_publisher', {
@@ -416,13 +434,7 @@ def _plan_mobile(scenario: Scenario) -> list[NodeSpec]:
             **({} if times is None else {'t': times}),
             'frame_id': scenario.path.frame_id}, use_sim_time=False),
         *_mobile_sensors(scenario),
-        NodeSpec('robotica_sim', 'odometry', 'odometry', {
-            'wheel_radius': robot.wheel_radius * (1.0 + odometry.wheel_radius_error),
-            'wheel_separation': robot.wheel_separation * (1.0 + odometry.track_error),
-            'integration_method': odometry.integration_method,
-            'heading_source': odometry.heading_source, 'fuse_gps': odometry.fuse_gps,
-            'fuse_compass': odometry.fuse_compass, **_origin(scenario), **_gps_bias(scenario),
-            'odom_frame_id': scenario.path.frame_id, **pose}),
+        NodeSpec('robotica_sim', 'odometry', 'odometry', estimator),
         NodeSpec('robotica_ctrl', 'path_tracker', 'path_tracker',
                  {'law': scenario.tracker.law, **gains,
                   'command_type': 'steering' if steered else 'twist',

@@ -56,7 +56,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from robotica_kin.finite import finite_real
-from robotica_kin.geodetic import GeodeticOrigin
+from robotica_kin.geodetic import GeodeticOrigin, ORIGIN_PARAMETERS
 from robotica_kin.parameter_specs import parameter_values, ParameterSpec, seed_spec
 from robotica_kin.types import Vector
 
@@ -418,12 +418,7 @@ class GpsModel:
 
 GPS_PARAMETERS: dict[str, ParameterSpec] = {
     'preset': ParameterSpec('dgps', 'Receiver (book §7.7.5)', choices=tuple(GPS_PRESETS)),
-    'origin.latitude': ParameterSpec(37.41, 'Latitude of the world origin [deg] (default: '
-                                     'Seville)', -90.0, 90.0),
-    'origin.longitude': ParameterSpec(-6.0, 'Longitude of the world origin [deg]',
-                                      -180.0, 180.0),
-    'origin.altitude': ParameterSpec(10.0, 'Height of the origin above the WGS-84 ellipsoid '
-                                     '[m]', -1e4, 1e5),
+    **ORIGIN_PARAMETERS,
     'antenna_height': ParameterSpec(0.0, 'Antenna height above the ground plane [m]',
                                     0.0, 100.0),
     'seed': seed_spec('Seed of the error draws'),

@@ -25,8 +25,9 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from robotica_kin.bounds import bounded, MAX_ANGULAR_RATE, MAX_SPEED
 from robotica_kin.integrators import rk4_step
-from robotica_kin.mobile.vehicles import (as_command, GEOMETRY_PARAMETERS, vehicle_kinematics,
-                                          VEHICLE_TYPES, VehicleGeometry, VehicleKinematics)
+from robotica_kin.mobile.vehicles import (as_command, GEOMETRY_PARAMETERS, POSE_PARAMETERS,
+                                          vehicle_kinematics, VEHICLE_TYPES, VehicleGeometry,
+                                          VehicleKinematics)
 from robotica_kin.parameter_specs import parameter_values, ParameterSpec
 
 __all__ = ['SIMULATOR_PARAMETERS', 'VehicleSimulation', 'VehicleSimulationParams',
@@ -63,10 +64,7 @@ class VehicleSimulationParams:
 SIMULATOR_PARAMETERS: dict[str, ParameterSpec] = {
     'vehicle.type': ParameterSpec('differential', 'Configuration', choices=VEHICLE_TYPES),
     **{f'vehicle.{name}': spec for name, spec in GEOMETRY_PARAMETERS.items()},
-    **{f'initial_pose.{axis}': ParameterSpec(0.0, description, -1e6, 1e6)
-       for axis, description in (('x', 'Initial x [m], world frame'),
-                                 ('y', 'Initial y [m], world frame'),
-                                 ('theta', 'Initial heading [rad], REP-103 (from the x axis)'))},
+    **POSE_PARAMETERS,
     'rk4_substeps': ParameterSpec(1, 'RK4 integration steps per step', 1, 1000),
     'cmd_timeout': ParameterSpec(0.5, 'A command older than this [s, simulated] stops the '
                                  'vehicle', 1e-3, 60.0),

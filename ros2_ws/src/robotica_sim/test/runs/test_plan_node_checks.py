@@ -118,6 +118,12 @@ CASES = [
      'robot.initial_pose[0] (x) must be in [-1e+06, 1e+06], got 2000000.0'),
     ('wheel of 20 m', 'demo', {'robot.wheel_radius': 20.0},
      'robot.wheel_radius must be in [0.001, 10], got 20.0'),
+    # odometry (robotica_kin.mobile.odometry_fusion.ODOMETRY_PARAMETERS)
+    ('nominal wheel of 10.8 m', 'demo', {'robot.wheel_radius': 9.0,
+                                         'odometry.wheel_radius_error': 0.2},
+     'robot.wheel_radius x (1 + odometry.wheel_radius_error) must be in [0.001, 10], got 10.'),
+    ('origin 200 km high, no GPS', 'demo', {'sensors.gps.origin': [37.0, -6.0, 2e5]},
+     'sensors.gps.origin[2] (altitude) must be in [-10000, 100000], got 200000.0'),
     # encoder_emulator (robotica_sim.sensors.encoder)
     ('fractional counts per turn', 'demo', {'sensors.encoders': {
         'pulses_per_revolution': 1023, 'decoding': 1, 'gear_ratio': 1.5}},
