@@ -24,7 +24,7 @@ from robotica_kin.dh import as_dyn_model, DHModel
 from robotica_kin.parameter_specs import (named_error, parameter_values, ParameterError,
                                           ParameterSpec)
 
-__all__ = ['JOINT_LAWS', 'JOINT_LAW_PARAMETERS', 'make_joint_law']
+__all__ = ['FIRST_PERIOD', 'JOINT_LAWS', 'JOINT_LAW_PARAMETERS', 'make_joint_law']
 
 JOINT_LAWS = ('pid', 'computed_torque')
 JOINT_LAW_PARAMETERS: dict[str, dict[str, ParameterSpec]] = {
@@ -47,6 +47,8 @@ JOINT_LAW_PARAMETERS: dict[str, dict[str, ParameterSpec]] = {
                                       '(anti-windup)')},
 }
 """The gains of each law by name (the node's parameters ``<law>.<gain>``); each 1 or n values."""
+FIRST_PERIOD = ParameterSpec(1e-3, 'dt [s] of the first step (no previous state yet)', 1e-6, 1.0)
+"""The joint controller's ``first_period``: the sample period before a second state."""
 
 
 def make_joint_law(law: str, model: DHModel | ArrayLike, gains: Mapping[str, Any],

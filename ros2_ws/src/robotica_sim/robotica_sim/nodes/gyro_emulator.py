@@ -18,9 +18,9 @@ from robotica_kin.bounds import StampGate
 from robotica_kin.ros.convert import stamp_to_seconds
 from robotica_kin.ros.entry_point import run_node
 from robotica_kin.ros.guarded import GuardedNode
-from robotica_kin.ros.parameters import declare
+from robotica_kin.ros.parameters import declare, declare_specs
 from robotica_kin.ros.qos import STREAM_PUB_QOS, STREAM_REPLAY_SUB_QOS
-from robotica_sim.sensors.gyro import GYRO_PRESETS, GyroModel
+from robotica_sim.sensors.gyro import GYRO_PARAMETERS, gyro_params, GyroModel
 from sensor_msgs.msg import Imu
 
 
@@ -29,14 +29,10 @@ class GyroEmulatorNode(GuardedNode):
 
     def __init__(self) -> None:
         super().__init__('gyro_emulator')
-        preset = declare(self, 'preset', 'mems_consumer',
-                         f'Gyro grade: one of {tuple(GYRO_PRESETS)}', read_only=True)
-        if preset not in GYRO_PRESETS:
-            raise ValueError(f'preset must be one of {tuple(GYRO_PRESETS)}, got {preset!r}')
-        seed = declare(self, 'seed', 0, 'Seed of the noise and bias draws', low=0,
-                       high=2**31 - 1, read_only=True)
-        self._axes = [GyroModel(GYRO_PRESETS[preset], np.random.default_rng(s))
-                      for s in np.random.SeedSequence(seed).spawn(3)]
+        values = declare_specs(self, GYRO_PARAMETERS)
+        params = gyro_params(values)
+        self._axes = [GyroModel(params, np.random.default_rng(s))
+                      for s in np.random.SeedSequence(values['seed']).spawn(3)]
         self._frame = declare(self, 'frame_id', 'base_link', 'frame_id of the readings',
                               read_only=True)
         self._last_t: float | None = None
@@ -44,7 +40,7 @@ class GyroEmulatorNode(GuardedNode):
         self._pub = self.create_publisher(Imu, 'imu/data', STREAM_PUB_QOS)
         self.create_subscription(Odometry, 'ground_truth/odom', self._on_truth,
                                  STREAM_REPLAY_SUB_QOS)
-        self.get_logger().info(f'gyro preset {preset!r}')
+        self.get_logger().info(f'gyro preset {values["preset"]!r}')
 
     def _on_truth(self, msg: Odometry) -> None:
         t = stamp_to_seconds(msg.header.stamp)

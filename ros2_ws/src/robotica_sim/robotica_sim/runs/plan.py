@@ -18,7 +18,7 @@ import math
 from typing import Any, Callable, Mapping
 
 import numpy as np
-from robotica_ctrl.joint_control.control_laws import make_joint_law
+from robotica_ctrl.joint_control.control_laws import FIRST_PERIOD, make_joint_law
 from robotica_ctrl.mobile import path_shapes
 from robotica_ctrl.mobile.tracking_laws import (check_gains, law_for_path, LAW_PARAMETERS,
                                                 TRACKER_PARAMETERS)
@@ -33,6 +33,7 @@ from robotica_sim.runs.scenario import Scenario, ScenarioError
 from robotica_sim.sensors.compass import compass_params
 from robotica_sim.sensors.encoder import encoder_params
 from robotica_sim.sensors.gps import gps_configuration, gps_preset
+from robotica_sim.sensors.gyro import gyro_params
 from robotica_sim.simulation.arm import arm_simulation
 from robotica_sim.simulation.vehicle import vehicle_simulation
 
@@ -268,6 +269,8 @@ def _plan_arm(scenario: Scenario) -> list[NodeSpec]:
                                         for key, node in REFERENCE_KEYS.items()},
                                      'sample_period': 'reference.sample_period'},
                 lambda: SampledTrajectory(*reference_samples(reference)))   # as the controller
+    _node_check(where, 'controller', {'first_period': 'step_period'},
+                lambda: FIRST_PERIOD.check('first_period', scenario.step_period))
     _node_check(where, 'controller', {'law': 'controller.law',
                                       **{key: f'controller.{key}'
                                          for key in scenario.controller.gains}},
@@ -288,6 +291,8 @@ def _plan_arm(scenario: Scenario) -> list[NodeSpec]:
     ]
 
 
+SENSOR_SEEDS = {'encoder': 1, 'gyro': 2, 'compass': 3, 'gps': 4}
+"""Each sensor emulator's seed is 10 x the scenario's seed + its number here."""
 ORIGIN_KEYS = {f'origin.{name}': f'sensors.gps.origin[{i}] ({name})'
                for i, name in enumerate(('latitude', 'longitude', 'altitude'))}
 """The geodetic origin's parameters (GPS emulator, odometry) by their scenario keys."""
@@ -297,29 +302,28 @@ def _mobile_sensors(scenario: Scenario) -> list[NodeSpec]:
     """Return the sensor emulators of a mobile run, each seeded from the scenario's seed."""
     where = scenario.source or scenario.name
     sensors = scenario.sensors
-    encoders = {key: getattr(sensors.encoders, key) for key in (
-        'pulses_per_revolution', 'decoding', 'gear_ratio', 'missed_count_probability')}
-    _node_check(where, 'sensors.encoders', {key: f'sensors.encoders.{key}' for key in encoders},
-                lambda: encoder_params(encoders))
-    nodes = [NodeSpec('robotica_sim', 'encoder_emulator', 'encoder_emulator', {
-        **encoders, 'seed': scenario.seed * 10 + 1})]
+    emulators: list[tuple[str, dict, str, Callable[[dict], Any]]] = [
+        ('encoder', {key: getattr(sensors.encoders, key) for key in (
+            'pulses_per_revolution', 'decoding', 'gear_ratio', 'missed_count_probability')},
+         'sensors.encoders', encoder_params)]
     if sensors.gyro.enabled:
-        nodes.append(NodeSpec('robotica_sim', 'gyro_emulator', 'gyro_emulator', {
-            'preset': sensors.gyro.preset, 'seed': scenario.seed * 10 + 2}))
+        emulators.append(('gyro', {'preset': sensors.gyro.preset}, 'sensors.gyro', gyro_params))
     if sensors.compass.enabled:
-        compass = {'noise_stddev': sensors.compass.noise_stddev,
-                   'hard_iron': _floats(sensors.compass.hard_iron),
-                   'tilt_error': sensors.compass.tilt_error}
-        _node_check(where, 'sensors.compass', {key: f'sensors.compass.{key}' for key in compass},
-                    lambda: compass_params(compass))
-        nodes.append(NodeSpec('robotica_sim', 'compass_emulator', 'compass_emulator', {
-            **compass, 'seed': scenario.seed * 10 + 3}))
+        emulators.append(('compass', {'noise_stddev': sensors.compass.noise_stddev,
+                                      'hard_iron': _floats(sensors.compass.hard_iron),
+                                      'tilt_error': sensors.compass.tilt_error},
+                          'sensors.compass', compass_params))
     if sensors.gps.enabled:
-        gps = {'preset': sensors.gps.preset, **_origin(scenario)}
-        _node_check(where, 'sensors.gps', {'preset': 'sensors.gps.preset', **ORIGIN_KEYS},
-                    lambda: gps_configuration(gps))
-        nodes.append(NodeSpec('robotica_sim', 'gps_emulator', 'gps_emulator', {
-            **gps, 'seed': scenario.seed * 10 + 4}))
+        emulators.append(('gps', {'preset': sensors.gps.preset, **_origin(scenario)},
+                          'sensors.gps', gps_configuration))
+    nodes = []
+    for sensor, params, section, configuration in emulators:
+        params['seed'] = scenario.seed * 10 + SENSOR_SEEDS[sensor]
+        keys = {'seed': 'seed', **ORIGIN_KEYS,
+                **{key: f'{section}.{key}' for key in params if not key.startswith('origin.')}}
+        _node_check(where, section, keys, lambda: configuration(params))
+        nodes.append(NodeSpec('robotica_sim', f'{sensor}_emulator', f'{sensor}_emulator',
+                              params))
     return nodes
 
 

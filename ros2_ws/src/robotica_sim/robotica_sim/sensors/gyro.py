@@ -29,12 +29,14 @@ is about 0.6 σ at τ of about 2 T. One model is one axis; a 3-axis IMU uses thr
 
 from dataclasses import dataclass
 import math
+from typing import Any, Mapping
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
+from robotica_kin.parameter_specs import parameter_values, ParameterSpec, seed_spec
 from scipy.signal import lfilter
 
-__all__ = ['GYRO_PRESETS', 'GyroModel', 'GyroParams']
+__all__ = ['GYRO_PARAMETERS', 'GYRO_PRESETS', 'GyroModel', 'GyroParams', 'gyro_params']
 
 _DEG = math.pi / 180.0   # [rad] per degree
 _HOUR = 3600.0           # [s] per hour
@@ -255,3 +257,23 @@ class GyroModel:
         self._rw_bias = float(rw[-1])
         ideal = (1.0 + p.scale_factor_error) * rates + self._turn_on_bias + gm + rw + white
         return self._output(ideal)
+
+
+GYRO_PARAMETERS: dict[str, ParameterSpec] = {
+    'preset': ParameterSpec('mems_consumer', 'Gyro grade', choices=tuple(GYRO_PRESETS)),
+    'seed': seed_spec('Seed of the noise and bias draws'),
+}
+"""The gyro emulator node's parameters by name: :func:`gyro_params`."""
+
+
+def gyro_params(parameters: Mapping[str, Any]) -> GyroParams:
+    """
+    Return the gyro grade of the emulator node's ``parameters`` (names of GYRO_PARAMETERS).
+
+    Raises :class:`~robotica_kin.parameter_specs.ParameterError` for a value out of its range
+    or choices.
+
+    >>> gyro_params({'preset': 'fog'}) is GYRO_PRESETS['fog']
+    True
+    """
+    return GYRO_PRESETS[parameter_values(GYRO_PARAMETERS, parameters)['preset']]
