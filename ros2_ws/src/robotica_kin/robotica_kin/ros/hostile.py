@@ -5,7 +5,8 @@ Hostile messages of any type, for the fuzz tests of the nodes (and of a user's o
 malicious stack may send: NaN, ±inf, ±1e308, zero and ordinary numbers for floats; the extremes
 of integers; absurd stamps (``sec`` = ±2**31, 0, 1e6 s away; ``nanosec`` >= 1e9, which is
 malformed); empty, short (one short of a 6-joint arm) and long sequences; empty, odd and long
-strings (frame ids). Seeded through the caller's ``random.Random``: a failure is replayed by its seed.
+strings (frame ids). Seeded through the caller's ``random.Random``: a failure is replayed by its
+seed.
 :func:`fuzz` drives a node with them and then with valid input.
 """
 import importlib
