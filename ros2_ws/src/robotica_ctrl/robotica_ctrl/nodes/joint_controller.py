@@ -20,10 +20,12 @@ local): its points are interpolated as ros2_controllers' joint trajectory contro
 (quintic, cubic or linear Hermite,
 :class:`~robotica_ctrl.trajectory.sampled_trajectory.SampledTrajectory`).
 A trajectory stamped 0 starts at the time of the next joint state. Without a trajectory the
-controller holds the first measured position. A state with missing or non-finite joints, or
-joints beyond the physical bounds of :mod:`robotica_kin.bounds`, is not answered (a simulator
-then brakes on its stale command) and the reason is logged; so is a state whose torques come
-out non-finite (the guard of :mod:`robotica_kin.ros.guarded` does not publish them).
+controller holds the first measured position. A state with missing, repeated or non-finite
+joints, joints beyond the physical bounds of :mod:`robotica_kin.bounds`, or a stamp more than
+``MAX_TIME_JUMP`` from the previous ones (a StampGate: three agreeing states restart the
+controller there) is not answered (a simulator then brakes on its stale command) and the reason
+is logged; so is a state whose torques come out non-finite (the guard of
+:mod:`robotica_kin.ros.guarded` does not publish them).
 """
 import numpy as np
 from rclpy.experimental import EventsExecutor
@@ -31,8 +33,8 @@ from robotica_ctrl.joint_control import JointControlLaw, JointReference, JointSt
 from robotica_ctrl.joint_control.control_laws import (FIRST_PERIOD, JOINT_LAW_PARAMETERS,
                                                       JOINT_LAWS, make_joint_law)
 from robotica_ctrl.trajectory.sampled_trajectory import SampledTrajectory
-from robotica_kin.bounds import bounded_array, MAX_JOINT_POSITION, MAX_JOINT_VELOCITY
-from robotica_kin.ros.convert import seconds_to_stamp, stamp_to_seconds
+from robotica_kin.bounds import bounded_array, MAX_JOINT_POSITION, MAX_JOINT_VELOCITY, StampGate
+from robotica_kin.ros.convert import joint_state_values, seconds_to_stamp, stamp_to_seconds
 from robotica_kin.ros.dh_messages import declare_robot
 from robotica_kin.ros.entry_point import run_node
 from robotica_kin.ros.guarded import GuardedNode
@@ -72,6 +74,7 @@ class JointControllerNode(GuardedNode):
         self._trajectory_start: float | None = None
         self._hold: np.ndarray | None = None
         self._previous_time: float | None = None
+        self._stamps = StampGate()   # of the joint states
         self._torque_pub = self.create_publisher(Float64MultiArray, 'joint_torques',
                                                  COMMAND_PUB_QOS)
         self._state_pub = self.create_publisher(JointControllerState, '~/controller_state',
@@ -129,23 +132,16 @@ class JointControllerNode(GuardedNode):
 
     # -- the control step -----------------------------------------------------------------
     def _on_joint_states(self, msg: JointStateMsg) -> None:
-        index = {name: i for i, name in enumerate(msg.name)}
-        missing = [j for j in self._names
-                   if j not in index or index[j] >= min(len(msg.position), len(msg.velocity))]
-        if missing:
-            self.get_logger().warn(f'joint_states lacks position or velocity of {missing}; '
-                                   'not answered', throttle_duration_sec=1.0)
-            return
-        rows = [index[j] for j in self._names]
-        q = np.array([msg.position[i] for i in rows])
-        qd = np.array([msg.velocity[i] for i in rows])
-        if not (np.isfinite(q).all() and np.isfinite(qd).all()):
-            self.get_logger().warn('non-finite joint state; not answered',
-                                   throttle_duration_sec=1.0)
-            return
-        bounded_array('joint positions', q, MAX_JOINT_POSITION)   # refused: not answered
+        # Refused (missing, repeated or non-finite joints, beyond the bounds, a stamp that jumps):
+        # the guard logs it and the state is not answered.
+        q, qd = joint_state_values(msg, self._names, ('position', 'velocity'))
+        bounded_array('joint positions', q, MAX_JOINT_POSITION)
         bounded_array('joint velocities', qd, MAX_JOINT_VELOCITY)
         t = stamp_to_seconds(msg.header.stamp)
+        if self._stamps.check(t) == 'restart':   # one stamp of 1e6 s gave 5e5 N m of PID torque
+            self.get_logger().warn(f'joint_states time restarted at {t:.3f} s: controller reset')
+            self._law.reset()
+            self._previous_time = None
         if self._previous_time is not None and t < self._previous_time:
             self.get_logger().warn(f'time went back from {self._previous_time:.3f} s to '
                                    f'{t:.3f} s: controller reset')

@@ -103,3 +103,29 @@ def test_a_state_whose_torques_overflow_is_not_answered(start_node, ros_node, sp
     assert spin(executor, lambda: 'joint velocities' in read_output(proc), timeout=10.0)
     assert all(math.isfinite(v) for m in received['joint_torques'][n:] for v in m.data)
     assert proc.poll() is None
+
+
+def test_a_state_stamped_far_ahead_is_not_integrated(start_node, ros_node, spin):
+    # Campaign of issue 16: with K_i = 10, one state stamped 1e6 s after the previous one was
+    # integrated over 1e6 s and answered with 5e5 N m on every joint (5e8 N m at 1e9 s).
+    node, executor = ros_node
+    proc = start_node('robotica_ctrl', 'joint_controller', '-p', 'law:=pid',
+                      '-p', 'pid.ki:=[10.0]')
+    received, ok = fuzz(
+        node, executor, {'joint_states': (JointState, _joint_state)},
+        {'joint_torques': Float64MultiArray,
+         '/joint_controller/controller_state': JointControllerState},
+        lambda got: len(got['/joint_controller/controller_state']) > 5, random.Random(0),
+        count=0)
+    assert ok
+    pub = node.create_publisher(JointState, 'joint_states', 10)
+    assert spin(executor, lambda: pub.get_subscription_count() > 0)
+    for t in (1e6, 1e9):
+        pub.publish(_stamped(JointState(name=PUMA_JOINTS, position=[0.05] * 6,
+                                        velocity=[0.0] * 6), 100.0 + t))
+    pub.publish(_joint_state(200.0))   # answered after the two above: they were handled
+    states = received['/joint_controller/controller_state']
+    assert spin(executor, lambda: states[-1].header.stamp.sec == 200)
+    assert all(m.header.stamp.sec < 1e6 for m in states)   # the far ones not answered
+    assert max(abs(v) for m in received['joint_torques'] for v in m.data) < 100.0
+    assert proc.poll() is None

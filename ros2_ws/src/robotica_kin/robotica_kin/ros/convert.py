@@ -17,6 +17,7 @@ from sensor_msgs.msg import JointState
 
 
 NANOSECONDS_PER_SECOND = 1_000_000_000
+_PLURALS = {'position': 'positions', 'velocity': 'velocities', 'effort': 'efforts'}
 
 
 def seconds(sec: int, nanosec: int) -> float:
@@ -85,7 +86,8 @@ def joint_state_values(msg: JointState, joints: Sequence[str],
                              f'{len(getattr(msg, field))} {field} values')
     missing = [joint for joint in joints if joint not in index]
     if missing:
-        raise ValueError(f'JointState lacks {" and ".join(fields)} of {missing}')
+        raise ValueError(f'JointState lacks {" and ".join(map(_PLURALS.get, fields))} of '
+                         f'{missing}')
     rows = [index[joint] for joint in joints]
     values = np.array([[getattr(msg, field)[i] for i in rows] for field in fields],
                       dtype=np.float64).reshape(len(fields), len(rows))

@@ -20,8 +20,10 @@ The guard every robotica node runs under: a bad message costs that message, neve
 * each publisher is a :class:`GuardedPublisher`: a message with a non-finite float (``inf``
   anywhere; NaN outside the fields the node declares as "not known") is not published, and
   :class:`NonFiniteOutput` is raised instead, so that inside a callback the guard logs it and
-  issues the safe output; after shutdown (the context invalid, e.g. on SIGINT while a loop still
-  publishes) a publish does nothing instead of raising.
+  issues the safe output; so is one whose header stamp is malformed (``nanosec`` >= 1e9: a node
+  that passes on the stamp of its input would pass on a hostile one); after shutdown (the
+  context invalid, e.g. on SIGINT while a loop still publishes) a publish does nothing instead
+  of raising.
 
 Configuration errors at start-up are not the guard's: the node's constructor raises
 ``ValueError`` and :func:`robotica_kin.ros.entry_point.run_node` exits 2 with one line.
@@ -159,6 +161,8 @@ class GuardedPublisher(Publisher):
         """
         Publish ``msg`` unless it holds a non-finite float (then raise NonFiniteOutput).
 
+        A header stamp with ``nanosec`` >= 1e9 is refused too (ValueError).
+
         After shutdown (the node's context no longer valid) nothing is published or raised.
         """
         if not isinstance(msg, bytes):
@@ -166,6 +170,9 @@ class GuardedPublisher(Publisher):
             if bad:
                 raise NonFiniteOutput(f'non-finite {", ".join(bad)} on {self.topic_name}: '
                                       'not published')
+            header = getattr(msg, 'header', None)
+            if header is not None:
+                stamp_to_seconds(header.stamp)   # ValueError for a malformed one
         if self.context is not None and not self.context.ok():
             return
         try:

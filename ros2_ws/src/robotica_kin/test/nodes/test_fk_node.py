@@ -114,7 +114,7 @@ def test_end_effector_pose_and_link_frames(fk, publish):
 def test_malformed_joint_states_are_refused(fk, spin, publish, read_output):
     proc, node, executor, joints, poses, links = fk
     for bad, reason in [
-            (_joint_state(PUMA_JOINTS[:5], np.zeros(5), sec=1), "lacks position of ['joint_6']"),
+            (_joint_state(PUMA_JOINTS[:5], np.zeros(5), sec=1), "lacks positions of ['joint_6']"),
             (_joint_state(PUMA_JOINTS, [0.0, math.nan, 0.0, 0.0, 0.0, 0.0], sec=2),
              'non-finite joint position'),
             (_joint_state(PUMA_JOINTS + ['joint_1'], [0.0] * 6 + [2.0], sec=2),   # which joint_1?

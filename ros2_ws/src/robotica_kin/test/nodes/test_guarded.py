@@ -15,7 +15,7 @@ from robotica_kin.bounds import bounded, MAX_SPEED, StampGate
 from robotica_kin.ros.guarded import GuardedNode, non_finite_fields, NonFiniteOutput
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import JointState
-from std_msgs.msg import Float64
+from std_msgs.msg import Float64, Header
 
 pytestmark = pytest.mark.ros
 
@@ -96,6 +96,10 @@ def test_a_non_finite_message_is_not_published_and_shutdown_is_silent(guarded):
     with pytest.raises(NonFiniteOutput, match='data'):
         pub.publish(Float64(data=math.nan))
     pub.publish(Float64(data=1.0))
+    stamped = node.create_publisher(JointState, 'stamped', 10)
+    with pytest.raises(ValueError, match='nanosec'):   # a stamp passed on from a hostile input
+        stamped.publish(JointState(header=Header(stamp=Time(sec=1, nanosec=2 ** 32 - 1))))
+    stamped.publish(JointState(header=Header(stamp=Time(sec=1, nanosec=999_999_999))))
     rclpy.try_shutdown(context=context)
     pub.publish(Float64(data=1.0))   # the context is invalid: nothing, and no traceback
 

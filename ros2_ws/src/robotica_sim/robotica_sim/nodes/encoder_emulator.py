@@ -9,11 +9,10 @@ per wheel revolution, floor quantisation, and edges missed with ``missed_count_p
 (reproducible from ``seed``). Wheel-radius and track errors are a mismatch between the simulated
 vehicle and the odometry's nominal geometry: set them there.
 """
-import math
-
 import numpy as np
 from rclpy.experimental import EventsExecutor
 from robotica_kin.bounds import bounded_array, MAX_JOINT_POSITION
+from robotica_kin.ros.convert import joint_state_values
 from robotica_kin.ros.entry_point import run_node
 from robotica_kin.ros.guarded import GuardedNode
 from robotica_kin.ros.parameters import declare, declare_specs
@@ -48,17 +47,8 @@ class EncoderEmulatorNode(GuardedNode):
                                f'counts with p = {params.missed_count_probability}')
 
     def _on_joint_states(self, msg: JointState) -> None:
-        try:
-            angles = [msg.position[list(msg.name).index(j)] for j in self._joints]
-        except (ValueError, IndexError):
-            self.get_logger().warn(f'joint_states lacks positions of {self._joints}; ignored',
-                                   throttle_duration_sec=5.0)
-            return
-        if not all(math.isfinite(a) for a in angles):
-            self.get_logger().warn('non-finite wheel angle; reading skipped',
-                                   throttle_duration_sec=5.0)
-            return
-        bounded_array('wheel angles', angles, MAX_JOINT_POSITION)   # refused: the guard logs
+        (angles,) = joint_state_values(msg, self._joints)   # refused: the guard logs it
+        bounded_array('wheel angles', angles, MAX_JOINT_POSITION)
         left, right = (counter.ticks(a) for counter, a in zip(self._counters, angles))
         out = WheelEncoders(left_ticks=left, right_ticks=right,
                             ticks_per_revolution=self._ticks_per_rev)
