@@ -126,7 +126,8 @@ def trajectory_samples(generator: str, n: int, sample_period: float, *,
     ------
     ValueError
         For an unknown generator or arguments the generator refuses (with its reason), more
-        than :data:`MAX_TRAJECTORY_POINTS` samples or samples that overflow; a
+        than :data:`MAX_TRAJECTORY_POINTS` samples, samples that overflow or times that do
+        not increase strictly (what a controller's ``SampledTrajectory`` refuses); a
         :class:`~robotica_kin.parameter_specs.ParameterError` names the node's parameter.
 
     Examples
@@ -143,6 +144,8 @@ def trajectory_samples(generator: str, n: int, sample_period: float, *,
     if not all(np.isfinite(array).all() for array in samples):
         raise ValueError(f'the {generator} trajectory is not finite: its positions, velocities '
                          'or accelerations overflow')
+    if np.any(np.diff(samples[0]) <= 0.0):   # a controller refuses the trajectory then
+        raise ValueError(f'the times of the {generator} trajectory do not increase strictly')
     return samples
 
 

@@ -23,7 +23,6 @@ from robotica_ctrl.mobile import path_shapes
 from robotica_ctrl.mobile.tracking_laws import (check_gains, law_for_path, LAW_PARAMETERS,
                                                 TRACKER_PARAMETERS)
 from robotica_ctrl.trajectory.joint_reference import reference_samples
-from robotica_ctrl.trajectory.sampled_trajectory import SampledTrajectory
 from robotica_kin.dh import as_dyn_model, DHModel
 from robotica_kin.mobile.odometry_fusion import ODOMETRY_PARAMETERS
 from robotica_kin.mobile.vehicles import GEOMETRY_PARAMETERS, STEERED_TYPES
@@ -268,7 +267,7 @@ def _plan_arm(scenario: Scenario) -> list[NodeSpec]:
                                      **{node: f'reference.{key}'
                                         for key, node in REFERENCE_KEYS.items()},
                                      'sample_period': 'reference.sample_period'},
-                lambda: SampledTrajectory(*reference_samples(reference)))   # as the controller
+                lambda: reference_samples(reference))
     _node_check(where, 'controller', {'first_period': 'step_period'},
                 lambda: FIRST_PERIOD.check('first_period', scenario.step_period))
     _node_check(where, 'controller', {'law': 'controller.law',
