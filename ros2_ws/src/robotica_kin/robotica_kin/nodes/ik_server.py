@@ -7,9 +7,10 @@ carries (``dh``), else the node's robot (parameters ``robot`` or ``dh_table``). 
 and ``ilimit`` mean the defaults 1e-6 and 1000; an empty ``q0`` or ``mask`` means the solver's
 default. A solver that does not converge answers ``converged = false`` with its last iterate and
 a message; bad input (unknown robot, NaN, wrong sizes, a non-unit quaternion, an ``ilimit``
-outside [0, ``MAX_ILIMIT``], a table of more than ``MAX_JOINTS`` joints) answers
-``converged = false``, an empty ``q`` and the reason (cut to ``ERROR_TEXT_LIMIT`` characters).
-The node never stops on a request, and answers each within seconds.
+outside [0, ``MAX_ILIMIT``], an ``stol`` above ``MAX_STOL``, a table of more than
+``MAX_JOINTS`` joints) answers ``converged = false``, an empty ``q`` and the reason (cut to
+``ERROR_TEXT_LIMIT`` characters). The node never stops on a request, and answers each within
+seconds.
 """
 import math
 
@@ -21,6 +22,7 @@ from robotica_kin.ros.guarded import error_text, GuardedNode
 from robotica_msgs.srv import InverseKinematics
 
 DEFAULT_STOL = 1e-6      # pose-error tolerance used when a request gives 0
+MAX_STOL = 1.0           # a larger one (1 m, 1 rad) called any start converged (stol = 1e308)
 DEFAULT_ILIMIT = 1000    # iterations used when a request gives 0
 MAX_ILIMIT = 10_000      # iterations a request may ask for: 1.6 s for 100 joints (2**31 - 1
 #                          iterations kept the server from answering anyone for hours)
@@ -28,8 +30,9 @@ MAX_ILIMIT = 10_000      # iterations a request may ask for: 1.6 s for 100 joint
 
 def _solver_options(request: InverseKinematics.Request) -> dict:
     """Return the keyword arguments of ``ikine_solve`` for a request, or raise ValueError."""
-    if not (math.isfinite(request.stol) and request.stol >= 0.0):
-        raise ValueError(f'stol must be finite and >= 0 (0: {DEFAULT_STOL}), got {request.stol}')
+    if not (math.isfinite(request.stol) and 0.0 <= request.stol <= MAX_STOL):
+        raise ValueError(f'stol must be in [0, {MAX_STOL}] (0: {DEFAULT_STOL}), got '
+                         f'{request.stol}')
     if not 0 <= request.ilimit <= MAX_ILIMIT:
         raise ValueError(f'ilimit must be in [0, {MAX_ILIMIT}] (0: {DEFAULT_ILIMIT}), got '
                          f'{request.ilimit}')

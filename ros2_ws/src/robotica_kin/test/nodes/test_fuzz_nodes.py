@@ -1,7 +1,7 @@
 """
 Fuzz tests of the robotica_kin nodes: hostile messages and requests, then valid ones.
 
-fk_node's joint_states subscriber gets a seeded burst of hostile messages
+fk_node's and state_publisher's joint_states subscribers get a seeded burst of hostile messages
 (:func:`robotica_kin.ros.hostile.fuzz`); both services get hostile requests (every field NaN,
 ±inf, ±1e308, extreme integers, empty or wrong-size arrays, odd strings). The nodes must stay
 alive, answer every request, publish nothing non-finite, and answer valid input normally after.
@@ -17,6 +17,7 @@ from robotica_kin.ros.hostile import fuzz, hostile_message
 from robotica_msgs.msg import DHParameter, DHTable
 from robotica_msgs.srv import ForwardKinematics, InverseKinematics
 from sensor_msgs.msg import JointState
+from tf2_msgs.msg import TFMessage
 
 pytestmark = pytest.mark.ros
 PUMA_JOINTS = [f'joint_{i}' for i in range(1, 7)]
@@ -84,6 +85,7 @@ LONG_TABLE = DHTable(links=[DHParameter(a=0.01)] * 101)              # MAX_JOINT
      ForwardKinematics.Request(q=[0.1] * 6)),
     ('ik_server', InverseKinematics, '/ik_server/inverse_kinematics', [
         InverseKinematics.Request(pose=FAR, ilimit=2 ** 31 - 1),   # hours of iterations
+        InverseKinematics.Request(pose=FAR, stol=1e308),           # 'converged' anywhere
         InverseKinematics.Request(pose=FAR, mask=[1.0] * BIG),     # 5 MB of message and log
         InverseKinematics.Request(pose=FAR, q0=[0.1] * BIG),
         InverseKinematics.Request(pose=FAR, dh=LONG_TABLE)],       # 500 joints: 4 GB, 20 s
@@ -106,3 +108,14 @@ def test_requests_of_absurd_size_are_refused_at_once(node_name, srv_type, servic
     text = read_output(proc)
     assert proc.poll() is None and 'Traceback' not in text
     assert max(map(len, text.splitlines())) < 1000
+
+
+def test_state_publisher_joint_states(start_node, ros_node, fuzz_survived):
+    node, executor = ros_node
+    proc = start_node('robotica_kin', 'state_publisher')
+    received, ok = fuzz(
+        node, executor, {'joint_states': (JointState, _joint_state)}, {'/tf': TFMessage},
+        lambda got: any(m.transforms and m.transforms[0].header.stamp.sec >= 100
+                        for m in got['/tf'][-20:]),
+        random.Random('state_publisher-17'))
+    fuzz_survived(proc, received, ok)
