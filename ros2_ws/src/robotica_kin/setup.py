@@ -23,6 +23,7 @@ setup(
         'console_scripts': [
             'fk_node = robotica_kin.nodes.fk_node:main',
             'ik_server = robotica_kin.nodes.ik_server:main',
+            'state_publisher = robotica_kin.nodes.state_publisher:main',
         ],
     },
 )

@@ -30,11 +30,20 @@ wheels as cylinders on ``continuous`` joints (axis: a positive rate drives the c
 way the kinematic model's positive wheel speed does) and, for the steered types, the steering
 joints that :meth:`~robotica_kin.mobile.vehicles.VehicleKinematics.joint_positions` publishes.
 The odometry wheels keep the simulator's default names ``left_wheel_joint`` and
-``right_wheel_joint``.
+``right_wheel_joint``. The sensor frames are fixed children of ``base_link`` with its axes:
+``imu_link`` over the guide point at ``imu_height`` and ``gps_link``, the antenna, over it at
+``antenna_height`` (the GPS emulator's parameter: its fixes are of the guide point raised by that
+height, so the frame sits where the emulated antenna is); both at the guide point because the
+emulators measure there (no lever arm is simulated: the gyro reads the body's yaw rate, the same
+everywhere on a rigid planar body, in ``base_link`` axes, which the IMU's axes are taken to be).
+
+:data:`ROBOT_DESCRIPTION_PARAMETERS` are the state publisher's parameters that choose a vehicle
+(``vehicle.type`` and the geometry under the simulator's names, so one parameter file serves
+both, and the sensor heights); :func:`robot_description` builds the URDF they choose.
 """
 
 import math
-from typing import Any
+from typing import Any, Mapping
 import xml.etree.ElementTree as ElementTree
 
 import numpy as np
@@ -42,14 +51,34 @@ from numpy.typing import ArrayLike, NDArray
 
 from robotica_kin.bounds import MAX_FORCE_TORQUE, MAX_JOINT_VELOCITY
 from robotica_kin.dh import as_dyn_model, dh_model, DHModel, linktrans
-from robotica_kin.mobile.vehicles import VEHICLE_TYPES, VehicleGeometry
+from robotica_kin.finite import finite_real
+from robotica_kin.mobile.vehicles import GEOMETRY_PARAMETERS, VEHICLE_TYPES, VehicleGeometry
+from robotica_kin.parameter_specs import parameter_values, ParameterSpec
 from robotica_kin.transforms import rpy2tr, tr2rpy
 
-__all__ = ['arm_urdf', 'vehicle_urdf']
+__all__ = ['ANTENNA_HEIGHT', 'IMU_HEIGHT', 'ROBOT_DESCRIPTION_PARAMETERS',
+           'SENSOR_FRAME_PARAMETERS', 'arm_urdf', 'robot_description', 'vehicle_urdf']
+
+IMU_HEIGHT = 0.1       # [m] imu_link over the guide point: mid-body at the default wheel radius
+ANTENNA_HEIGHT = 0.0   # [m] gps_link over the guide point: the GPS emulator's default
+SENSOR_FRAME_PARAMETERS: dict[str, ParameterSpec] = {
+    'imu_height': ParameterSpec(IMU_HEIGHT, 'Height of imu_link over the guide point [m] '
+                                '(base_link axes)', 0.0, 100.0),
+    'antenna_height': ParameterSpec(ANTENNA_HEIGHT, 'Antenna height above the ground plane [m]',
+                                    0.0, 100.0),
+}
+"""Where the sensor frames are: the vehicle URDF's and the GPS emulator's antenna height."""
+ROBOT_DESCRIPTION_PARAMETERS: dict[str, ParameterSpec] = {
+    'vehicle.type': ParameterSpec('', "Vehicle to describe; '': the arm of robot or dh_table",
+                                  choices=('',) + VEHICLE_TYPES),
+    **{f'vehicle.{name}': spec for name, spec in GEOMETRY_PARAMETERS.items()},
+    **SENSOR_FRAME_PARAMETERS,
+}
+"""The state publisher's choice of a vehicle: the simulator's names and ranges, the sensors'."""
 
 _MATERIALS = {'link': '0.6 0.6 0.6 1', 'joint': '1.0 0.5 0.0 1', 'body': '0.2 0.3 0.6 1',
               'wheel': '0.1 0.1 0.1 1', 'x_axis': '1 0 0 1', 'y_axis': '0 1 0 1',
-              'z_axis': '0 0 1 1'}
+              'z_axis': '0 0 1 1', 'sensor': '0.9 0.8 0.1 1'}
 _INERTIA_TOL = 1e-12   # relative: an eigenvalue of the inertia tensor below -tol * its size fails
 
 
@@ -296,7 +325,8 @@ def _steering(urdf: ElementTree.Element, name: str, xyz: ArrayLike,
     return link.get('name', '')
 
 
-def vehicle_urdf(vehicle_type: str, geometry: VehicleGeometry | None = None) -> str:
+def vehicle_urdf(vehicle_type: str, geometry: VehicleGeometry | None = None, *,
+                 imu_height: float = IMU_HEIGHT, antenna_height: float = ANTENNA_HEIGHT) -> str:
     """
     Return the URDF (XML text) of a vehicle of :data:`~robotica_kin.mobile.vehicles.VEHICLE_TYPES`.
 
@@ -316,17 +346,21 @@ def vehicle_urdf(vehicle_type: str, geometry: VehicleGeometry | None = None) -> 
     - ackermann: ``front_left_steering_joint``, ``front_right_steering_joint`` at (l, ±b/2) with
       ``front_left_wheel_joint``, ``front_right_wheel_joint``; rear wheels as the tricycle's.
 
+    Sensor frames (fixed joints ``imu_joint``, ``gps_joint``, axes of ``base_link``):
+    ``imu_link`` at (0, 0, ``imu_height``), ``gps_link`` at (0, 0, ``antenna_height``) [m].
+
     Raises
     ------
     ValueError
-        For an unknown type (the message lists the known ones) or a ``geometry`` that is not a
-        :class:`~robotica_kin.mobile.vehicles.VehicleGeometry`.
+        For an unknown type (the message lists the known ones), a ``geometry`` that is not a
+        :class:`~robotica_kin.mobile.vehicles.VehicleGeometry` or a sensor height that is not
+        finite and >= 0.
 
     Examples
     --------
     >>> root = ElementTree.fromstring(vehicle_urdf('differential'))
     >>> sorted(j.get('name') for j in root.iter('joint'))
-    ['left_wheel_joint', 'right_wheel_joint']
+    ['gps_joint', 'imu_joint', 'left_wheel_joint', 'right_wheel_joint']
 
     """
     if vehicle_type not in VEHICLE_TYPES:
@@ -335,6 +369,12 @@ def vehicle_urdf(vehicle_type: str, geometry: VehicleGeometry | None = None) -> 
         geometry = VehicleGeometry()
     elif not isinstance(geometry, VehicleGeometry):
         raise ValueError(f'geometry must be a VehicleGeometry, got {type(geometry).__name__}')
+    heights = {'imu': finite_real('imu_height', imu_height),
+               'gps': finite_real('antenna_height', antenna_height)}
+    for sensor, height in heights.items():
+        if height < 0.0:
+            raise ValueError(f'{"imu_height" if sensor == "imu" else "antenna_height"} must be '
+                             f'>= 0 m, got {height!r}')
     c, half_b, half_l = geometry.wheel_radius, 0.5 * geometry.track, geometry.half_length
     l, width = geometry.wheelbase, max(geometry.track - 0.6 * c, 0.5 * geometry.track)
     urdf = _robot(f'{vehicle_type}_vehicle')
@@ -385,4 +425,45 @@ def vehicle_urdf(vehicle_type: str, geometry: VehicleGeometry | None = None) -> 
         else:
             _wheel(urdf, 'left_wheel_joint', 'base_link', (0.0, half_b, c), 0.0, geometry)
             _wheel(urdf, 'right_wheel_joint', 'base_link', (0.0, -half_b, c), 0.0, geometry)
+    for sensor, height in heights.items():   # a small box for the IMU, a disc for the antenna
+        link = ElementTree.SubElement(urdf, 'link', name=f'{sensor}_link')
+        if sensor == 'imu':
+            _visual(link, np.eye(4), 'sensor', 'box', size=(0.4 * c, 0.4 * c, 0.2 * c))
+        else:
+            _visual(link, np.eye(4), 'sensor', 'cylinder', radius=0.4 * c, length=0.1 * c)
+        _joint(urdf, f'{sensor}_joint', 'fixed', 'base_link', link.get('name', ''),
+               _transform((0.0, 0.0, height)))
     return _text(urdf)
+
+
+def robot_description(parameters: Mapping[str, Any], arm: DHModel) -> str:
+    """
+    Return the URDF that a state publisher's ``parameters`` choose.
+
+    ``parameters`` maps names of :data:`ROBOT_DESCRIPTION_PARAMETERS` (missing ones take their
+    defaults, others are ignored): ``vehicle.type`` '' describes ``arm`` (:func:`arm_urdf`),
+    else that vehicle with the geometry ``vehicle.*`` and the sensor heights
+    (:func:`vehicle_urdf`).
+
+    Raises
+    ------
+    ValueError
+        :class:`~robotica_kin.parameter_specs.ParameterError` for a value out of its range or
+        choices, or as :func:`arm_urdf` and :func:`vehicle_urdf`.
+
+    Examples
+    --------
+    >>> from robotica_kin.robots import planar_rr
+    >>> text = robot_description({'vehicle.type': 'bicycle'}, planar_rr())
+    >>> ElementTree.fromstring(text).get('name')
+    'bicycle_vehicle'
+    >>> ElementTree.fromstring(robot_description({}, planar_rr())).get('name')
+    'planar_rr'
+
+    """
+    values = parameter_values(ROBOT_DESCRIPTION_PARAMETERS, parameters)
+    if not values['vehicle.type']:
+        return arm_urdf(arm)
+    geometry = VehicleGeometry(**{name: values[f'vehicle.{name}'] for name in GEOMETRY_PARAMETERS})
+    return vehicle_urdf(values['vehicle.type'], geometry, imu_height=values['imu_height'],
+                        antenna_height=values['antenna_height'])

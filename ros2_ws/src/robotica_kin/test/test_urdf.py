@@ -5,7 +5,8 @@ Placements are compared with Craig's product of link transforms (``fkine``, ``li
 NumPy, book (4.6)); mass matrices with the project's ``inertia`` (CRBA on the model that
 :mod:`robotica_kin.pinocchio_model` builds itself, not from the URDF) and, for the 2R of Ej. 5.1,
 with the book's closed form (5.77). Vehicle wheels are compared with positions and drive
-directions written from the geometry's definition (track b, wheel radius c, wheelbase l, ...).
+directions written from the geometry's definition (track b, wheel radius c, wheelbase l, ...),
+the sensor frames with the heights given.
 """
 
 import io
@@ -18,10 +19,12 @@ import pytest
 from robotica_kin.dh import dh_model
 from robotica_kin.dynamics import inertia
 from robotica_kin.forward_kinematics import fkine, link_frames
-from robotica_kin.mobile.vehicles import VEHICLE_TYPES, VehicleGeometry
+from robotica_kin.mobile.vehicles import GEOMETRY_PARAMETERS, VEHICLE_TYPES, VehicleGeometry
+from robotica_kin.parameter_specs import ParameterError
 from robotica_kin.robots import cylindrical_rpr, planar_rr, planar_rrr, puma560, two_link_arm
 from robotica_kin.transforms import rpy2tr, transl
-from robotica_kin.urdf import arm_urdf, vehicle_urdf
+from robotica_kin.urdf import (arm_urdf, robot_description, ROBOT_DESCRIPTION_PARAMETERS,
+                               SENSOR_FRAME_PARAMETERS, vehicle_urdf)
 import yourdfpy
 
 SAMPLES = 20
@@ -263,3 +266,47 @@ def test_bad_vehicle_requests_are_refused():
         vehicle_urdf('hovercraft')
     with pytest.raises(ValueError, match='geometry must be a VehicleGeometry, got dict'):
         vehicle_urdf('differential', {'track': 0.5})
+
+
+@pytest.mark.parametrize('vehicle_type', VEHICLE_TYPES)
+def test_sensor_frames_are_fixed_over_the_guide_point(vehicle_type):
+    text = vehicle_urdf(vehicle_type, GEOMETRY, imu_height=0.25, antenna_height=1.5)
+    model = pin.buildModelFromXML(text)
+    data = model.createData()
+    pin.framesForwardKinematics(model, data, pin.neutral(model))
+    for link, height in (('imu_link', 0.25), ('gps_link', 1.5)):
+        frame = model.frames[model.getFrameId(link)]
+        assert frame.parentJoint == 0   # fixed to base_link, which is the root
+        np.testing.assert_allclose(data.oMf[model.getFrameId(link)].homogeneous,
+                                   transl(0.0, 0.0, height), atol=1e-15)
+    urdf = yourdfpy.URDF.load(io.StringIO(text))
+    assert urdf.validate()
+    assert {urdf.joint_map[name].type for name in ('imu_joint', 'gps_joint')} == {'fixed'}
+    np.testing.assert_allclose(urdf.get_transform('gps_link', 'base_link'),
+                               transl(0.0, 0.0, 1.5), atol=1e-15)
+
+
+def test_sensor_heights_default_to_their_parameters_and_bad_ones_are_refused():
+    root = ElementTree.fromstring(vehicle_urdf('differential'))
+    origins = {j.get('name'): j.find('origin').get('xyz') for j in root.iter('joint')}
+    assert origins['imu_joint'] == f'0.0 0.0 {SENSOR_FRAME_PARAMETERS["imu_height"].default!r}'
+    assert origins['gps_joint'] == '0.0 0.0 0.0'   # the GPS emulator's antenna_height default
+    with pytest.raises(ValueError, match='imu_height must be >= 0 m, got -0.1'):
+        vehicle_urdf('differential', imu_height=-0.1)
+    with pytest.raises(ValueError, match='antenna_height'):
+        vehicle_urdf('differential', antenna_height=math.inf)
+
+
+def test_robot_description_chooses_with_the_simulator_s_geometry_specs():
+    for name, spec in GEOMETRY_PARAMETERS.items():
+        assert ROBOT_DESCRIPTION_PARAMETERS[f'vehicle.{name}'] is spec
+    assert robot_description({}, planar_rr()) == arm_urdf(planar_rr())
+    values = {'vehicle.type': 'tricycle', 'vehicle.wheelbase': 0.9, 'vehicle.wheel_radius': 0.15,
+              'vehicle.track': 0.5, 'antenna_height': 1.0, 'other': 'ignored'}
+    assert robot_description(values, planar_rr()) == vehicle_urdf(
+        'tricycle', VehicleGeometry(wheel_radius=0.15, track=0.5, wheelbase=0.9),
+        antenna_height=1.0)
+    with pytest.raises(ParameterError, match='vehicle.track must be in'):
+        robot_description({'vehicle.type': 'differential', 'vehicle.track': 0.0}, planar_rr())
+    with pytest.raises(ParameterError, match='vehicle.type must be one of'):
+        robot_description({'vehicle.type': 'hovercraft'}, planar_rr())

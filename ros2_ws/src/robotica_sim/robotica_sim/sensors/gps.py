@@ -59,6 +59,7 @@ from robotica_kin.finite import finite_real
 from robotica_kin.geodetic import GeodeticOrigin, ORIGIN_PARAMETERS
 from robotica_kin.parameter_specs import parameter_values, ParameterSpec, seed_spec
 from robotica_kin.types import Vector
+from robotica_kin.urdf import SENSOR_FRAME_PARAMETERS
 
 __all__ = [
     'GPS_PARAMETERS', 'GPS_PRESETS', 'GPS_STATUSES', 'GpsFix', 'GpsModel', 'GpsParams',
@@ -419,8 +420,7 @@ class GpsModel:
 GPS_PARAMETERS: dict[str, ParameterSpec] = {
     'preset': ParameterSpec('dgps', 'Receiver (book §7.7.5)', choices=tuple(GPS_PRESETS)),
     **ORIGIN_PARAMETERS,
-    'antenna_height': ParameterSpec(0.0, 'Antenna height above the ground plane [m]',
-                                    0.0, 100.0),
+    'antenna_height': SENSOR_FRAME_PARAMETERS['antenna_height'],   # gps_link's, in the URDF
     'seed': seed_spec('Seed of the error draws'),
 }
 """The GPS emulator node's parameters by name: :func:`gps_configuration`."""
