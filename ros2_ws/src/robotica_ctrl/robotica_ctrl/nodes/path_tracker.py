@@ -24,10 +24,11 @@ angle of its curvature, α = atan(l ω / v) (book (4.119), (4.121)), l = ``wheel
 With ``control_rate`` = 0 the law runs once per pose message (what a lockstep simulation needs:
 every step is answered exactly once); with ``control_rate`` > 0 it runs on a timer from the
 newest pose and brakes when that pose is older than ``pose_timeout``. The node commands a stop
-and says why when: there is no path yet (for every law, ``open_loop`` too), the path is
-finished, the robot is farther than ``max_cross_track`` from the path (lost), the pose is stale,
-not finite (for a law that reads it) or in another frame than the path (the ground truth's
-world frame is taken as the path's: the simulator starts the odometry frame at the true pose).
+and says why when: there is no path yet (for every law, ``open_loop`` too; a refused path keeps
+the previous one), the path is finished, the robot is farther than ``max_cross_track`` from the
+path (lost), the pose is stale, not finite (for a law that reads it) or in another frame than
+the path (the ground truth's world frame is taken as the path's: the simulator starts the
+odometry frame at the true pose).
 """
 import math
 
@@ -127,9 +128,10 @@ class PathTrackerNode(GuardedNode):
         try:
             law, path, timed = law_for_path(self._law_name, path_points(msg), self._gains,
                                             times)
-        except ValueError as err:
-            self.get_logger().error(f'path refused: {err}')
-            self._law = None
+        except ValueError as err:   # one bad message must not stop a run whose path came once
+            self.get_logger().error(f'path refused: {err}; '
+                                    + ('keeping the previous path' if self._law is not None
+                                       else 'no path'))
             return
         self._law = law
         self._path_frame = msg.header.frame_id

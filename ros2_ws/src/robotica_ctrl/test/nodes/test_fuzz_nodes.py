@@ -16,6 +16,7 @@ from nav_msgs.msg import Odometry, Path
 import pytest
 from robotica_kin.ros.convert import seconds_to_stamp
 from robotica_kin.ros.hostile import fuzz
+from robotica_kin.ros.qos import LATCHED_QOS
 from robotica_msgs.msg import JointControllerState, TrackingError
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64MultiArray
@@ -129,3 +130,30 @@ def test_a_state_stamped_far_ahead_is_not_integrated(start_node, ros_node, spin)
     assert all(m.header.stamp.sec < 1e6 for m in states)   # the far ones not answered
     assert max(abs(v) for m in received['joint_torques'] for v in m.data) < 100.0
     assert proc.poll() is None
+
+
+def test_a_refused_path_keeps_the_previous_one(start_node, ros_node, spin, read_output):
+    # Campaign of issue 16: a refused path (here empty) made the tracker drop the path it had
+    # and stop for good, since a run's path is published once (latched).
+    node, executor = ros_node
+    proc = start_node('robotica_ctrl', 'path_tracker', '-r', '/path_tracker/path:=/path')
+    follows = (lambda got: any(m.header.stamp.sec >= 100 and m.cross_track == pytest.approx(0.5)
+                               for m in got['/path_tracker/tracking_error'][-20:]))
+    received, ok = fuzz(node, executor, {'odom': (Odometry, _odom), '/path': (Path, _path)},
+                        {'cmd_vel': Twist, '/path_tracker/tracking_error': TrackingError},
+                        follows, random.Random(0), count=0)
+    assert ok
+    bad = node.create_publisher(Path, '/path', LATCHED_QOS)
+    assert spin(executor, lambda: bad.get_subscription_count() > 0)
+    bad.publish(Path())
+    assert spin(executor, lambda: 'keeping the previous path' in read_output(proc))
+    odom = node.create_publisher(Odometry, 'odom', 10)
+    assert spin(executor, lambda: odom.get_subscription_count() > 0)
+    errors = received['/path_tracker/tracking_error']
+    n = len(errors)
+    for k in range(20):
+        odom.publish(_odom(300.0 + 0.02 * k))
+        spin(executor, lambda: False, 0.02)
+    assert spin(executor, lambda: len(errors) > n)
+    assert errors[-1].header.stamp.sec >= 300 and errors[-1].cross_track == pytest.approx(0.5)
+    assert received['cmd_vel'][-1].linear.x > 0.0

@@ -15,9 +15,9 @@ from geometry_msgs.msg import Twist, Vector3
 from nav_msgs.msg import Odometry, Path
 import pytest
 from rcl_interfaces.msg import Log
-from rclpy.qos import DurabilityPolicy, QoSProfile
 from robotica_kin.ros.convert import seconds_to_stamp
 from robotica_kin.ros.hostile import fuzz
+from robotica_kin.ros.qos import LATCHED_QOS
 from robotica_msgs.msg import (JointControllerState, SimulatorStatus, TrackingError,
                                VehicleCommand, WheelEncoders)
 from robotica_sim.bags.info import bag_info
@@ -31,7 +31,6 @@ from std_msgs.msg import Float64MultiArray
 from trajectory_msgs.msg import JointTrajectory
 
 pytestmark = pytest.mark.ros
-LATCHED = QoSProfile(depth=10, durability=DurabilityPolicy.TRANSIENT_LOCAL)
 
 
 def _stamped(msg, t):
@@ -225,7 +224,7 @@ def test_hostile_messages_of_every_recorded_type_leave_a_readable_bag(start_node
     received, ok = fuzz(node, executor, {t: (m, _default(m)) for t, m in RECORDED.items()}, {},
                         lambda got: True, random.Random('recorder-16'), count=40)
     fuzz_survived(proc, received, ok)
-    marker = node.create_publisher(Twist, '/cmd_vel', LATCHED)   # as the recorder subscribed
+    marker = node.create_publisher(Twist, '/cmd_vel', LATCHED_QOS)   # as the recorder subscribed
     assert spin(executor, lambda: marker.get_subscription_count() > 0)
     for _ in range(5):
         marker.publish(Twist(linear=Vector3(x=42.0)))
