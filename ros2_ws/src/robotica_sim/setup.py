@@ -34,6 +34,7 @@ setup(
             'odometry = robotica_sim.nodes.odometry:main',
             'recorder = robotica_sim.nodes.recorder:main',
             'view_relay = robotica_sim.nodes.view_relay:main',
+            'markers = robotica_sim.nodes.markers:main',
             'robotica = robotica_sim.cli.main:main',
         ],
     },

@@ -15,7 +15,7 @@ from geometry_msgs.msg import Twist, Vector3
 from nav_msgs.msg import Odometry, Path
 import pytest
 from rcl_interfaces.msg import Log
-from robotica_kin.ros.convert import seconds_to_stamp
+from robotica_kin.ros.convert import path_message, seconds_to_stamp
 from robotica_kin.ros.hostile import fuzz
 from robotica_kin.ros.qos import LATCHED_QOS
 from robotica_msgs.msg import (JointControllerState, SimulatorStatus, TrackingError,
@@ -29,6 +29,7 @@ from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import Imu, JointState, MagneticField, NavSatFix
 from std_msgs.msg import Float64MultiArray
 from trajectory_msgs.msg import JointTrajectory
+from visualization_msgs.msg import MarkerArray
 
 pytestmark = pytest.mark.ros
 
@@ -84,6 +85,22 @@ def _ticks(t):
                                   ticks_per_revolution=1000), t)
 
 
+def _target(t):
+    msg = _stamped(TrackingError(), t)
+    msg.header.frame_id = 'map'
+    msg.target_point.x = t
+    return msg
+
+
+def _reference(t):
+    return _stamped(JointControllerState(reference_position=[0.1 * t] * 6), t)
+
+
+def _footprint_at(sec):
+    return lambda m: any(marker.ns == 'footprint' and marker.header.stamp.sec >= sec
+                         for marker in m.markers)
+
+
 # node, parameters, inputs {topic: (type, valid message of time t)}, outputs {topic: (type,
 # fields that may be NaN)}, the output that shows recovery and what it must satisfy.
 CASES = {
@@ -120,6 +137,13 @@ CASES = {
                          lambda m: m.header.stamp.sec >= 100),
     'gps_emulator': ([], {'ground_truth/odom': (Odometry, _truth)}, {'gps/fix': (NavSatFix, ())},
                      'gps/fix', lambda m: m.header.stamp.sec >= 100),
+    'markers': (
+        ['-p', 'vehicle.type:=differential', '-p', 'publish_rate:=50.0'],
+        {'path': (Path, lambda t: path_message([[0.0, 0.0], [t, 1.0]], 'map', t)),
+         'odom': (Odometry, _truth), 'ground_truth/odom': (Odometry, _truth),
+         'gps/fix': (NavSatFix, _fix), 'path_tracker/tracking_error': (TrackingError, _target),
+         'joint_controller/controller_state': (JointControllerState, _reference)},
+        {'markers': (MarkerArray, ())}, 'markers', _footprint_at(100)),
 }
 
 NODES = {'simulator_tricycle': 'simulator', 'odometry_gyro': 'odometry'}   # else the case's name
