@@ -43,6 +43,7 @@ from geometry_msgs.msg import Point, Pose, Quaternion
 from nav_msgs.msg import Odometry, Path
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
+from rclpy.experimental import EventsExecutor
 from robotica_kin.bounds import bounded, bounded_array, MAX_JOINT_POSITION, MAX_LATITUDE, \
     MAX_LONGITUDE
 from robotica_kin.forward_kinematics import fkine
@@ -231,4 +232,4 @@ class MarkersNode(GuardedNode):
 
 def main(args=None) -> None:
     """Run the markers node until Ctrl-C."""
-    run_node(MarkersNode, args)
+    run_node(MarkersNode, args, executor_factory=EventsExecutor)

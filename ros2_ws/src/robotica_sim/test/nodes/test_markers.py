@@ -8,6 +8,7 @@ curvature to first order (north = Δφ (M + h), as in test_gps_emulator); the PU
 pose from the DH model's ``fkine`` and its quaternion read by SciPy.
 """
 import math
+import signal
 
 from builtin_interfaces.msg import Time
 from geometry_msgs.msg import Point
@@ -65,15 +66,16 @@ def _xy(points):
 
 def test_markers_of_a_run(start_node, ros_node, spin):
     node, executor = ros_node
-    start_node('robotica_sim', 'markers', '-p', 'vehicle.type:=differential',
-               '-p', f'covariance_k:={K}', '-p', 'publish_rate:=20.0', '-p', 'robot:=puma560',
-               '-p', f'origin.latitude:={LAT0}', '-p', f'origin.longitude:={LON0}',
-               '-p', f'origin.altitude:={H0}', '-p', 'gps_history:=2')
-    markers = {}
+    proc = start_node(
+        'robotica_sim', 'markers', '-p', 'vehicle.type:=differential', '-p', f'covariance_k:={K}',
+        '-p', 'publish_rate:=20.0', '-p', 'robot:=puma560', '-p', f'origin.latitude:={LAT0}',
+        '-p', f'origin.longitude:={LON0}', '-p', f'origin.altitude:={H0}', '-p', 'gps_history:=2')
+    markers, stamps = {}, []
 
     def received(msg):
         for marker in msg.markers:
             markers[(marker.ns, marker.id)] = marker
+            stamps.append((marker.ns, marker.header.stamp.sec))
     node.create_subscription(MarkerArray, 'markers', received, QOS)
     path_pub = node.create_publisher(Path, 'path', LATCHED_QOS)
     path = [[0.0, 0.0], [1.0, 0.5], [2.0, 2.0]]
@@ -151,6 +153,17 @@ def test_markers_of_a_run(start_node, ros_node, spin):
                                atol=1e-9)
     assert [(c.r, c.g, c.b) for c in tool.colors[::2]] == [(1.0, 0.0, 0.0), (0.0, 1.0, 0.0),
                                                            (0.0, 0.0, 1.0)]
+
+    # A covariance that is not one drops its message: no marker of t = 50 s; t = 51 s is drawn.
+    bad, good = _odometry('odom', 1.0, 2.0, 0.5, 50), _odometry('odom', 1.5, 2.0, 0.5, 51)
+    bad.pose.covariance[1] = 5.0   # x-y entry without its y-x twin
+    pubs['odom'].publish(bad)
+    assert spin(executor, lambda: (pubs['odom'].publish(good),
+                                   markers[('covariance', 0)].header.stamp.sec == 51)[-1], 10.0)
+    assert ('footprint', 50) not in stamps and ('covariance', 50) not in stamps
+    assert markers[('footprint', 0)].pose.position.x == 1.5
+    proc.send_signal(signal.SIGINT)
+    assert proc.wait(timeout=15) == 0
 
 
 def test_a_parameter_out_of_range_is_refused(start_node, read_output):
