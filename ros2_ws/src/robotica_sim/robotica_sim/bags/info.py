@@ -12,7 +12,7 @@ nodes that ran, :mod:`robotica_sim.bags.run_record`). Times are the bag's receiv
 from dataclasses import dataclass
 from pathlib import Path
 
-from robotica_sim.bags.repair import partial_reason, repair_command
+from robotica_sim.bags.repair import not_regular, partial_reason, repair_command
 from robotica_sim.bags.run_record import custom_data, run_record, RunRecord
 from rosbags.highlevel import AnyReader
 
@@ -20,7 +20,10 @@ __all__ = ['BagError', 'BagInfo', 'TopicInfo', 'bag_info', 'format_info', 'open_
 
 
 class BagError(Exception):
-    """The path is not a readable bag; the message says why."""
+    """The path is not a readable bag; the message says why, on one line."""
+
+    def __init__(self, message: str) -> None:
+        super().__init__(' '.join(str(message).split()))   # rosbags' YAML errors span lines
 
 
 @dataclass(frozen=True)
@@ -67,13 +70,16 @@ def open_bag(path: str | Path) -> AnyReader:
     ------
     BagError
         If ``path`` is not a bag directory, or its metadata or data cannot be read (a
-        truncated file, a missing ``metadata.yaml``).
+        truncated file, a missing ``metadata.yaml``, a FIFO or a device in place of a file).
 
     """
     bag = Path(path)
     if not bag.is_dir():
         raise BagError(f'{bag}: not a bag directory (a rosbag2 bag is a directory with '
                        'metadata.yaml)')
+    irregular = not_regular(bag)
+    if irregular:
+        raise BagError(f'{bag}: {", ".join(irregular)} not a regular file')
     partial = partial_reason(bag)
     if partial:
         raise BagError(f'{bag}: a partial bag ({partial}): `{repair_command(bag)}` recovers '

@@ -11,12 +11,23 @@ recorder), in the order they were recorded.
 
 from dataclasses import dataclass
 from pathlib import Path
+import re
 from typing import Iterator
 
 from robotica_sim.bags.info import BagError, open_bag
 from rosbags.highlevel import AnyReader
 
-__all__ = ['PlaybackTopic', 'Playback', 'open_playback', 'parse_remaps', 'wall_time']
+__all__ = ['PlaybackTopic', 'Playback', 'SelectionError', 'open_playback', 'parse_remaps',
+           'wall_time']
+
+# An absolute ROS 2 topic name: tokens of letters, digits and underscores, not starting with a
+# digit, each after one '/' (rcl's rules, without substitutions or a namespace to resolve).
+_TOPIC_NAME = re.compile(r'(/[A-Za-z_][A-Za-z0-9_]*)+')
+_RULE = 'tokens of letters, digits and _, not starting with a digit, each after one /'
+
+
+class SelectionError(ValueError):
+    """The topics or remappings asked for cannot be replayed from this bag; says which and why."""
 
 
 @dataclass(frozen=True)
@@ -64,16 +75,28 @@ class Playback:
 
 def parse_remaps(remaps: list[str]) -> dict[str, str]:
     """
-    Return ``['/from:=/to', ...]`` as {'/from': '/to'}, or raise ValueError.
+    Return ``['/from:=/to', ...]`` as {'/from': '/to'}, or raise SelectionError.
+
+    Both names must be absolute ROS 2 topic names, and a topic is remapped at most once.
 
     >>> parse_remaps(['/odom:=/replayed/odom'])
     {'/odom': '/replayed/odom'}
+    >>> parse_remaps(['/odom:=/2nd'])  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    robotica_sim.bags.player.SelectionError: remapping '/odom:=/2nd': '/2nd' is not a ROS topic...
     """
-    result = {}
+    result: dict[str, str] = {}
     for remap in remaps:
         source, sep, target = remap.partition(':=')
         if not sep or not source.startswith('/') or not target.startswith('/'):
-            raise ValueError(f'remapping {remap!r} must read /from:=/to')
+            raise SelectionError(f'remapping {remap!r} must read /from:=/to')
+        for name in (source, target):
+            if not _TOPIC_NAME.fullmatch(name):
+                raise SelectionError(f'remapping {remap!r}: {name!r} is not a ROS topic name '
+                                     f'({_RULE})')
+        if source in result:
+            raise SelectionError(f'{source} is remapped twice ({source}:={result[source]} and '
+                                 f'{remap})')
         result[source] = target
     return result
 
@@ -86,21 +109,37 @@ def open_playback(path: str | Path, topics: list[str] | None = None,
     Raises
     ------
     BagError
-        If ``path`` is not a readable bag, or a requested topic or remapped one is not in it.
+        If ``path`` is not a readable bag.
+    SelectionError
+        If a requested topic or a remapped one is not in the bag, or two selected topics would
+        be published on one name (a remapping onto another topic's name).
 
     """
     bag = Path(path)
     reader = open_bag(bag)
-    in_bag = {c.topic: c for c in reader.connections}
-    unknown = [t for t in (topics or []) + list(remaps or {}) if t not in in_bag]
-    if unknown:
+    try:
+        in_bag = {c.topic: c for c in reader.connections}
+        for name in topics or []:
+            if not _TOPIC_NAME.fullmatch(name):
+                raise SelectionError(f'--topics {name!r}: not a ROS topic name ({_RULE})')
+        unknown = [t for t in (topics or []) + list(remaps or {}) if t not in in_bag]
+        if unknown:
+            raise SelectionError(f'{bag}: no topic {unknown[0]} in the bag; it has '
+                                 f'{", ".join(sorted(in_bag))}')
+        selected: dict[str, PlaybackTopic] = {}
+        outputs: dict[str, str] = {}
+        for name in topics or sorted(in_bag):
+            output = (remaps or {}).get(name, name)
+            if output in outputs and outputs[output] != name:
+                raise SelectionError(f'{outputs[output]} and {name} would both be published as '
+                                     f'{output}: remap one of them elsewhere')
+            outputs[output] = name
+            connection = in_bag[name]
+            selected[name] = PlaybackTopic(name, output, connection.msgtype,
+                                           int(connection.msgcount))
+    except SelectionError:
         reader.close()
-        raise BagError(f'{bag}: no topic {unknown[0]} in the bag; it has {sorted(in_bag)}')
-    selected = {}
-    for name in topics or sorted(in_bag):
-        connection = in_bag[name]
-        selected[name] = PlaybackTopic(name, (remaps or {}).get(name, name),
-                                       connection.msgtype, int(connection.msgcount))
+        raise
     return Playback(reader, selected)
 
 

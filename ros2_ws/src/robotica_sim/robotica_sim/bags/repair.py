@@ -12,6 +12,13 @@ what was read: topics (type, definition, offered QoS, type hash, counts), files,
 ``custom_data`` (the ``robotica`` metadata records of the files, under what a ``metadata.yaml``
 already there held; that file is kept as ``metadata.yaml.broken``). The effect of ``ros2 bag
 reindex`` plus ``mcap recover``.
+
+The originals are never lost: every finished copy is written beside its original first
+(``<file>.repairing``), and the originals are renamed only once every copy is complete, so a
+repair that is interrupted (Ctrl-C) or fails (a full disk) leaves the bag as it found it; an
+original kept by an earlier repair (``<file>.broken``) is never overwritten. A storage file or
+``metadata.yaml`` that is not a regular file (a FIFO, a device, a directory) is refused before
+anything is opened: reading a FIFO would wait for a writer for ever.
 """
 from dataclasses import dataclass, field
 import os
@@ -31,6 +38,7 @@ from robotica_sim.bags.writer import CHUNK_SIZE, CUSTOM_DATA_RECORD, LIBRARY
 import yaml
 
 BROKEN_SUFFIX = '.broken'
+PARTIAL_SUFFIX = '.repairing'   # a finished copy being written
 MCAP_MAGIC = b'\x89MCAP0\r\n'   # the first and last bytes of a finished MCAP file
 # What a truncated or torn record raises while it is parsed or decompressed.
 READ_ERRORS = (McapError, EOFError, struct.error, ValueError, KeyError, IndexError,
@@ -78,6 +86,18 @@ def _storage_files(bag: Path) -> list[Path]:
     return files
 
 
+def not_regular(bag: str | Path) -> list[str]:
+    """
+    Return the names of the bag's ``*.mcap`` and ``metadata.yaml`` that are not regular files.
+
+    A FIFO, a device or a directory in their place cannot be a bag's file, and opening a FIFO
+    blocks until a writer comes: callers refuse such a bag before they open anything.
+    """
+    bag = Path(bag)
+    candidates = [*sorted(bag.glob('*.mcap')), bag / METADATA_FILE]
+    return [f.name for f in candidates if (f.exists() or f.is_symlink()) and not f.is_file()]
+
+
 class _Rewriter:
     """Copy the complete records of damaged files into finished ones, gathering the metadata."""
 
@@ -89,8 +109,8 @@ class _Rewriter:
         """Copy the complete messages of ``source`` into a new, finished ``target``."""
         schemas: dict[int, Schema] = {}
         channels: dict[int, tuple[int, TopicRecord]] = {}   # source id -> (target id, topic)
-        record = FileRecord(target.name)
-        outcome = FileRepair(target.name, 0, complete=False)
+        record = FileRecord(source.name)   # the copy takes the original's name
+        outcome = FileRepair(source.name, 0, complete=False)
         with open(source, 'rb') as stream, open(target, 'xb') as out:
             writer = Writer(out, chunk_size=CHUNK_SIZE, compression=CompressionType.ZSTD)
             writer.start(profile='ros2', library=LIBRARY)
@@ -138,6 +158,8 @@ class _Rewriter:
 
 def _finished(path: Path) -> bool:
     """Return whether the MCAP file ``path`` ends with the magic bytes (it has its footer)."""
+    if not path.is_file():   # never open a FIFO (it blocks) or a device
+        return False
     try:
         with open(path, 'rb') as stream:
             if stream.seek(0, os.SEEK_END) < 2 * len(MCAP_MAGIC):
@@ -196,32 +218,50 @@ def repair_bag(bag: str | Path) -> RepairReport:
     Raises
     ------
     RepairError
-        If ``bag`` is not a directory, has no MCAP file, or is not partial (it has a
-        ``metadata.yaml`` and every file its footer: nothing to repair).
+        If ``bag`` is not a directory, has no MCAP file, has a file that is not a regular file,
+        still holds the originals of an earlier repair (``*.broken``), or is not partial (it has
+        a ``metadata.yaml`` and every file its footer: nothing to repair).
+    OSError
+        If a file cannot be read or written; the bag is then left as it was.
 
     """
     bag = Path(bag)
     if not bag.is_dir():
         raise RepairError(f'{bag}: not a directory')
     sources = _storage_files(bag)
+    irregular = not_regular(bag)
+    if irregular:
+        raise RepairError(f'{bag}: {", ".join(irregular)} not a regular file')
     if not needs_repair(bag):
         raise RepairError(f'{bag}: has a {METADATA_FILE} and every file is complete, so it was '
                           'closed properly; nothing to repair')
+    kept = [p.name for p in [*sources, bag / METADATA_FILE]
+            if p.with_name(p.name + BROKEN_SUFFIX).exists()]
+    if kept:
+        raise RepairError(f'{bag}: {kept[0]}{BROKEN_SUFFIX} exists (the original kept by an '
+                          'earlier repair): move it away first, it would be overwritten')
     rewriter = _Rewriter()
     report = RepairReport(bag)
+    copies = {source: source.with_name(source.name + PARTIAL_SUFFIX) for source in sources}
     records = []
-    for source in sources:
-        broken = source.with_name(source.name + BROKEN_SUFFIX)
-        os.replace(source, broken)
-        record, outcome = rewriter.rewrite(broken, source)
-        report.files.append(outcome)
-        if record.count:
-            records.append(record)
-        else:    # nothing complete in it (a split file just begun): left out of the bag
-            source.unlink()
-    if not records:
-        raise RepairError(f'{bag}: no complete message in any file (originals kept as '
-                          f'*.mcap{BROKEN_SUFFIX})')
+    try:
+        for source, copy in copies.items():
+            copy.unlink(missing_ok=True)   # left by a repair that was killed
+            record, outcome = rewriter.rewrite(source, copy)
+            report.files.append(outcome)
+            if record.count:
+                records.append(record)
+        if not records:
+            raise RepairError(f'{bag}: no complete message in any file (nothing was changed)')
+        # Every copy is complete: the originals become *.broken, the copies take their names;
+        # a file with nothing complete in it (a split file just begun) leaves the bag.
+        for source, copy in copies.items():
+            os.replace(source, source.with_name(source.name + BROKEN_SUFFIX))
+            if any(r.name == source.name for r in records):
+                os.replace(copy, source)
+    finally:
+        for copy in copies.values():
+            copy.unlink(missing_ok=True)
     report.topics = list(rewriter.topics.values())
     custom_data = {**rewriter.custom_data, **_recorded_custom_data(bag)}
     report.old_metadata = (bag / METADATA_FILE).exists()

@@ -11,6 +11,11 @@ saw itself:
 * ``robotica.publishers``: for each recorded topic, the nodes that published it (seen by the
   recorder when it subscribed and when it closed the bag).
 
+Once the recorder has closed the bag, ``robotica run`` adds how the run ended (``ended`` in
+``robotica.run.yaml``: ``completed``, or why it ended early: interrupted, a node that died, a
+timeout; :func:`record_end`), so that a run stopped after 2 s of its 60 is never shown as a
+60 s run.
+
 :func:`run_record` reads them into a :class:`RunRecord`. A bag recorded before the run settings
 were stored (no ``robotica.run.yaml``) falls back to the scenario file's settings and says so
 (``settings_from``); a node that published a recorded topic but was not started by
@@ -21,17 +26,18 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from robotica_sim.bags.metadata import METADATA_FILE
+from robotica_sim.bags.metadata import METADATA_FILE, write_metadata
 import yaml
 
-__all__ = ['RUN_KEY', 'PUBLISHERS_KEY', 'SCENARIO_KEY', 'RunNode', 'RunRecord', 'custom_data',
-           'run_record']
+__all__ = ['COMPLETED', 'RUN_KEY', 'PUBLISHERS_KEY', 'SCENARIO_KEY', 'RunNode', 'RunRecord',
+           'custom_data', 'record_end', 'run_record']
 
 RUN_KEY = 'robotica.run.yaml'
 SCENARIO_KEY = 'robotica.scenario.yaml'
 PUBLISHERS_KEY = 'robotica.publishers'
 SETTINGS = ('seed', 'pacing', 'duration', 'step_period')
 ROBOTICA = 'robotica'
+COMPLETED = 'completed'   # how a run that reached its end time ended
 # Topics every node publishes: they do not tell what a node did in the run.
 GRAPH_TOPICS = ('/rosout', '/parameter_events')
 _LOADER = getattr(yaml, 'CSafeLoader', yaml.SafeLoader)   # LibYAML when available
@@ -64,6 +70,7 @@ class RunRecord:
     overrides: dict[str, Any] = field(default_factory=dict)  # command-line overrides
     nodes: tuple[RunNode, ...] = ()
     scenario: dict[str, Any] = field(default_factory=dict)   # the scenario file, parsed
+    ended: str = ''                  # COMPLETED, why the run ended early, or '' (not recorded)
 
     @property
     def foreign_nodes(self) -> tuple[RunNode, ...]:
@@ -79,6 +86,9 @@ class RunRecord:
         >>> RunRecord('demo', settings={'pacing': 'realtime', 'duration': 3.0},
         ...           settings_from='run').lines()
         [('Scenario', 'demo'), ('Run', 'pacing realtime, duration 3 s (as run)')]
+        >>> RunRecord('demo', settings={'duration': 60.0}, settings_from='run',
+        ...           ended='interrupted').lines()[1]
+        ('Run', 'duration 60 s (as run); ended early: interrupted')
         """
         out: list[tuple[str, str]] = []
         if self.name is not None:
@@ -98,6 +108,8 @@ class RunRecord:
             else:
                 text += (' (from the scenario file: this bag records no run settings, so '
                          'command-line overrides are not shown)')
+            if self.ended and self.ended != COMPLETED:
+                text += f'; ended early: {self.ended}'
             out.append(('Run', text))
         elif self.name is None:
             out.append(('Run', 'no run settings in the bag (recorded outside robotica run)'))
@@ -169,7 +181,9 @@ def run_record(custom: dict[str, str]) -> RunRecord:
     source = run if run else scenario
     ran = run.get('scenario', scenario.get('name'))
     overrides = run.get('overrides')
+    ended = run.get('ended')
     return RunRecord(
+        ended='' if ended is None else str(ended),
         name=None if ran is None else str(ran),
         description=None if scenario.get('description') is None
         else str(scenario['description']),
@@ -177,3 +191,29 @@ def run_record(custom: dict[str, str]) -> RunRecord:
         settings_from='run' if run else 'scenario file' if scenario else '',
         overrides=overrides if isinstance(overrides, dict) else {},
         nodes=tuple(nodes), scenario=scenario)
+
+
+def record_end(bag: str | Path, ended: str) -> None:
+    """
+    Record how the run ended (``ended``) in the closed bag's ``metadata.yaml``.
+
+    ``ended`` is :data:`COMPLETED` or why the run ended early; it goes into the bag's
+    ``robotica.run.yaml`` (a bag without one is left as it is). The file is replaced
+    atomically (:func:`robotica_sim.bags.metadata.write_metadata`).
+
+    Raises
+    ------
+    OSError
+        If the metadata cannot be read or written.
+
+    """
+    path = Path(bag)
+    metadata = yaml.load((path / METADATA_FILE).read_text(), Loader=_LOADER)
+    information = metadata['rosbag2_bagfile_information']
+    custom = dict(information.get('custom_data') or {})
+    run = _mapping(custom.get(RUN_KEY))
+    if not run:
+        return
+    run['ended'] = ended
+    custom[RUN_KEY] = yaml.safe_dump(run, sort_keys=False)
+    write_metadata(path, {**information, 'custom_data': custom})

@@ -8,10 +8,9 @@ from them (the originals are kept as ``*.mcap.broken`` and ``metadata.yaml.broke
 :mod:`robotica_sim.bags.repair`.
 """
 import argparse
-from pathlib import Path
-import sys
 
-from robotica_sim.bags.repair import repair_bag, RepairError
+from robotica_sim.bags.repair import repair_bag
+from robotica_sim.cli.options import path
 
 HELP = 'repair a bag whose recorder was killed (robotica bag repair BAG)'
 EPILOG = """examples:
@@ -25,16 +24,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     repair = actions.add_parser('repair', help="rebuild a killed recorder's bag",
                                 description=__doc__,
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
-    repair.add_argument('bag', type=Path, help="bag directory (the recorder's output)")
+    repair.add_argument('bag', type=path, help="bag directory (the recorder's output)")
 
 
 def main(args: argparse.Namespace) -> int:
     """Run the action; return the exit code."""
-    try:
-        report = repair_bag(args.bag)
-    except (RepairError, OSError) as err:
-        print(f'robotica bag repair: {err}', file=sys.stderr)
-        return 1
+    # A RepairError or an OSError is one line and exit 1 (robotica_sim.cli.main).
+    report = repair_bag(args.bag)
     for f in report.files:
         state = 'complete' if f.complete else f'cut short ({f.stopped_at})'
         print(f'{f.name}: {f.messages} messages kept, {state}')

@@ -30,7 +30,7 @@ from robotica_sim.benchmarks.mobile import mobile_core_benchmark
 from robotica_sim.benchmarks.recorder import RATES, recorder_benchmark
 from robotica_sim.benchmarks.tracking import (format_tracking_table, PATHS, plot_tracking,
                                               POSE_SOURCES, tracking_benchmark, VEHICLES)
-from robotica_sim.cli.options import integer, real
+from robotica_sim.cli.options import integer, path, real
 
 HELP = ('measure the speed of the kinematics, the arm loop, the mobile loop, the tracking '
         'laws or the recorder (robotica bench kin|arm|mobile|tracking|recorder)')
@@ -84,7 +84,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         metavar='POSE', help='tracking: pose given to the laws, of '
                         f'{", ".join(POSE_SOURCES)} (the simulated truth, or the EKF fusing '
                         'encoders, compass and DGPS)')
-    parser.add_argument('--plots', metavar='DIR',
+    parser.add_argument('--plots', type=path, metavar='DIR',
                         help='tracking: also write the PNG figures into DIR (created)')
     parser.add_argument('--json', action='store_true', help='print JSON instead of a table')
     parser.add_argument('--quiet', action='store_true', help='no progress on stderr')

@@ -7,9 +7,10 @@ it each check is printed as metric | value | bound | PASS/FAIL, and the exit cod
 check fails. A folder gives one summary line per bag. ``--json`` writes every bag's metrics
 and checks. Metrics, units and the rubric format: docs/grading.md.
 
-Exit codes: 0 every check passed (or metrics only), 1 a check failed or a bag could not be
-read, 2 usage error (bad arguments, a rubric that is not valid, a --json file that cannot be
-written), 130 interrupted.
+Exit codes: 0 every check passed (or metrics only), 1 a check failed, a bag could not be read
+or the --json file could not be written (a full disk), 2 usage error (bad arguments, a rubric
+that is not valid, a --json file that cannot be created where it is asked for: refused before
+the grading), 130 interrupted.
 """
 import argparse
 from concurrent.futures import as_completed, Future, ProcessPoolExecutor
@@ -24,10 +25,11 @@ from typing import Any
 
 from robotica_sim.bags.info import BagError
 from robotica_sim.bags.run_record import RunRecord
-from robotica_sim.cli.options import integer
+from robotica_sim.cli.main import one_line
+from robotica_sim.cli.options import integer, nonempty, output_problem, path
 from robotica_sim.grading.metrics import compute_metrics, METRICS
 from robotica_sim.grading.rubric import (Bound, check_metrics, load_rubric, resolve_rubric,
-                                         Rubric, RubricError)
+                                         Rubric)
 from robotica_sim.grading.series import load_run, TOPICS
 
 HELP = 'compute the metrics of recorded runs and check them against a rubric'
@@ -45,11 +47,11 @@ GRADED_TOPICS = tuple(TOPICS[role] for role in (
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Add the arguments of ``robotica grade``."""
-    parser.add_argument('path', type=Path,
+    parser.add_argument('path', type=path,
                         help='a bag directory, or a folder searched (any depth) for bags')
-    parser.add_argument('--rubric', default=None,
+    parser.add_argument('--rubric', type=nonempty, default=None,
                         help='rubric YAML file, or the name of a shipped rubric')
-    parser.add_argument('--json', type=Path, default=None, metavar='OUT.json',
+    parser.add_argument('--json', type=path, default=None, metavar='OUT.json',
                         help="write every bag's metrics and checks as JSON ('-': stdout)")
     parser.add_argument('--jobs', type=integer(1, 1024), default=os.cpu_count() or 1,
                         help=f'bags graded in parallel (default: CPUs, {os.cpu_count()})')
@@ -120,7 +122,8 @@ def grade_bag(bag: Path, rubric: Rubric | None) -> dict:
 def _run_entry(record: RunRecord) -> dict:
     """Return what ran as the bag records it: settings (and as text), nodes not ours."""
     return {'settings': record.settings, 'settings_from': record.settings_from,
-            'overrides': record.overrides, 'text': dict(record.lines()).get('Run', ''),
+            'overrides': record.overrides, 'ended': record.ended,
+            'text': dict(record.lines()).get('Run', ''),
             'nodes_not_started_by_robotica': [n.name for n in record.foreign_nodes]}
 
 
@@ -239,12 +242,13 @@ def _grade_all(bags: list[Path], rubric: Rubric | None, jobs: int, quiet: bool) 
 
 def main(args: argparse.Namespace) -> int:
     """Grade the bag or folder; return the exit code."""
-    rubric = None
-    if args.rubric is not None:
-        try:
-            rubric = load_rubric(resolve_rubric(args.rubric))
-        except RubricError as err:
-            print(f'robotica grade: {err}', file=sys.stderr)
+    # A RubricError is one line and exit 2 (robotica_sim.cli.main).
+    rubric = None if args.rubric is None else load_rubric(resolve_rubric(args.rubric))
+    to_stdout = args.json is not None and str(args.json) == '-'
+    if args.json is not None and not to_stdout:   # before the grading, not after it
+        problem = output_problem(args.json)
+        if problem:
+            print(f'robotica grade: error: cannot write {args.json}: {problem}', file=sys.stderr)
             return 2
     root: Path = args.path
     if not root.is_dir():
@@ -262,9 +266,8 @@ def main(args: argparse.Namespace) -> int:
         print('robotica grade: interrupted', file=sys.stderr)
         return 130
     single = bags == [root]
-    to_stdout = args.json is not None and str(args.json) == '-'
     if single and entries[0]['status'] == 'error':
-        print(f'robotica grade: {entries[0]["error"]}', file=sys.stderr)
+        print(f'robotica grade: {one_line(entries[0]["error"])}', file=sys.stderr)
     elif not to_stdout:
         print(format_entry(entries[0]) if single else format_summary(entries, root))
     if args.json is not None:
@@ -277,9 +280,11 @@ def main(args: argparse.Namespace) -> int:
             print(text)
         else:
             try:
-                args.json.write_text(text + '\n')
-            except OSError as err:
-                print(f'robotica grade: cannot write {args.json}: {err.strerror or err}',
-                      file=sys.stderr)
+                out = open(args.json, 'w')
+            except OSError as err:   # where it was asked for: a usage error
+                print(f'robotica grade: error: cannot write {args.json}: '
+                      f'{err.strerror or err}', file=sys.stderr)
                 return 2
+            with out:   # a failed write (a full disk) is an I/O error: exit 1 (cli.main)
+                out.write(text + '\n')
     return 0 if all(e['status'] in ('pass', 'ok') for e in entries) else 1

@@ -8,10 +8,9 @@ not a bag, or a bag that cannot be read, gets one line saying why and exit code 
 import argparse
 import dataclasses
 import json
-from pathlib import Path
-import sys
 
-from robotica_sim.bags.info import bag_info, BagError, format_info
+from robotica_sim.bags.info import bag_info, format_info
+from robotica_sim.cli.options import path
 
 HELP = 'show the topics, counts, rates and scenario of a recorded bag'
 EPILOG = """examples:
@@ -22,17 +21,13 @@ EPILOG = """examples:
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Add the arguments of ``robotica info``."""
-    parser.add_argument('bag', type=Path, help='bag directory (with metadata.yaml)')
+    parser.add_argument('bag', type=path, help='bag directory (with metadata.yaml)')
     parser.add_argument('--json', action='store_true', help='print the summary as JSON')
 
 
 def main(args: argparse.Namespace) -> int:
     """Print the bag's summary; return the exit code."""
-    try:
-        info = bag_info(args.bag)
-    except BagError as err:
-        print(f'robotica info: {err}', file=sys.stderr)
-        return 1
+    info = bag_info(args.bag)   # a BagError is one line and exit 1 (robotica_sim.cli.main)
     if args.json:
         summary = dataclasses.asdict(info)
         summary['path'] = str(info.path)

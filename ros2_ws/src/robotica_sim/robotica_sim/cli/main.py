@@ -6,34 +6,35 @@ Every verb ends in one of these exit codes, with at most one line on stderr for 
 - 0 success;
 - 1 the work failed: a run or a check failed, a bag cannot be read (not a bag, truncated,
   nothing to plot), an I/O error (the file system refused a read or a write);
-- 2 usage: a bad option or option value, a scenario or rubric that is not valid (missing,
-  undecodable, a wrong key or value), an output that cannot be created where it is asked for;
-- 130 interrupted (Ctrl-C, SIGINT or SIGTERM); 141 stdout closed early (``robotica info BAG |
-  head``), silently, like a command ended by SIGPIPE.
+- 2 usage: a bad option or option value (an empty path among them), a scenario or rubric
+  that is not valid (missing, undecodable, a wrong or repeated key or value), a topic or
+  remapping a bag cannot replay, an output that cannot be created where it is asked for;
+- 130 interrupted (Ctrl-C, SIGINT or SIGTERM; after a Ctrl-C that came while an extension
+  module loaded, CPython may end the process by SIGINT itself, which a shell shows as 130
+  too); 141 stdout closed early (``robotica info BAG | head``), silently, like a command
+  ended by SIGPIPE.
 
-The mapping is made here, once, for the error classes of the project (:data:`USAGE_ERRORS`,
-:data:`FAILURE_ERRORS`) and ``OSError``; a verb catches only what it reports differently. An
+The mapping is made here, once, for the error classes of the project (:func:`usage_errors`,
+:func:`failure_errors`) and ``OSError``; a verb catches only what it reports differently. An
 unexpected exception is a bug: one line names it (``ROBOTICA_TRACEBACK=1`` shows the
-traceback).
+traceback). Ctrl-C and SIGTERM are handled from the first instant: the verbs and their
+libraries (rclpy, NumPy, SciPy: a second or two) are imported under the same handlers, so that
+an interrupted start is ``interrupted`` and 130 too, never a traceback of the import.
 """
 import argparse
+import importlib
+import importlib.machinery
 import os
 import signal
 import sys
+import threading
+from types import FrameType, ModuleType
 from typing import NoReturn, Optional
 
-from robotica_sim.bags.info import BagError
-from robotica_sim.bags.repair import RepairError
-from robotica_sim.cli import bag, bench, grade, info, play, report, run
-from robotica_sim.grading.report import ReportError
-from robotica_sim.grading.rubric import RubricError
-from robotica_sim.runs.scenario import ScenarioError
-
-VERBS = {'run': run, 'info': info, 'play': play, 'grade': grade, 'report': report, 'bag': bag,
-         'bench': bench}
-USAGE_ERRORS = (ScenarioError, RubricError)     # exit 2
-FAILURE_ERRORS = (BagError, RepairError, ReportError)   # exit 1
+VERBS = ('run', 'info', 'play', 'grade', 'report', 'bag', 'bench')
+"""The verbs, each a module of this package (imported when the command line is parsed)."""
 EXIT_INTERRUPTED = 130
+IMPORT_RETRY = 0.05   # [s] after which a signal deferred by an extension's import comes again
 EXIT_BROKEN_PIPE = 141   # 128 + SIGPIPE
 
 
@@ -55,6 +56,26 @@ def one_line(text: str) -> str:
     return ' '.join(line.strip() for line in str(text).splitlines() if line.strip())
 
 
+def usage_errors() -> tuple[type[Exception], ...]:
+    """Return the error classes that are a bad argument or input (exit 2)."""
+    from robotica_sim.bags.player import SelectionError
+    from robotica_sim.grading.rubric import RubricError
+    from robotica_sim.runs.scenario import ScenarioError
+    return ScenarioError, RubricError, SelectionError
+
+
+def failure_errors() -> tuple[type[Exception], ...]:
+    """Return the error classes that are work that failed (exit 1)."""
+    from robotica_sim.bags.info import BagError
+    from robotica_sim.bags.repair import RepairError
+    from robotica_sim.grading.report import ReportError
+    return BagError, RepairError, ReportError
+
+
+def _verb(name: str) -> ModuleType:
+    return importlib.import_module(f'robotica_sim.cli.{name}')
+
+
 def build_parser() -> argparse.ArgumentParser:
     """Return the parser of the command and its verbs."""
     parser = OneLineParser(
@@ -62,7 +83,7 @@ def build_parser() -> argparse.ArgumentParser:
         formatter_class=argparse.ArgumentDefaultsHelpFormatter,
         epilog='example: robotica run demo')
     verbs = parser.add_subparsers(dest='verb', required=True, metavar='VERB')
-    for name, module in VERBS.items():
+    for name, module in ((name, _verb(name)) for name in VERBS):
         sub = verbs.add_parser(name, help=module.HELP, description=module.__doc__,
                                formatter_class=argparse.RawDescriptionHelpFormatter,
                                epilog=module.EPILOG)
@@ -71,8 +92,58 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
-def _terminate(signum, frame) -> None:
+def _interrupt(signum: int, frame: Optional[FrameType]) -> None:
+    """
+    End the verb on SIGINT or SIGTERM: raise KeyboardInterrupt, its cleanup runs.
+
+    Not while an extension module initialises: raised in Python code that its initialisation
+    calls (Matplotlib's ft2font imports NumPy), the interrupt became "ImportError:
+    initialization failed" and then a fatal error of the interpreter at its exit. Then the
+    signal is sent again a moment later, until the initialisation is over.
+    """
+    if _initialising_extension(frame):
+        timer = threading.Timer(IMPORT_RETRY, signal.pthread_kill,
+                                (threading.main_thread().ident, signum))
+        timer.daemon = True
+        timer.start()
+        return
     raise KeyboardInterrupt
+
+
+def _initialising_extension(frame: Optional[FrameType]) -> bool:
+    """Return whether ``frame`` runs within the creation of an extension module."""
+    while frame is not None:
+        if frame.f_code.co_name in ('create_module', 'exec_module') and isinstance(
+                frame.f_locals.get('self'), importlib.machinery.ExtensionFileLoader):
+            return True
+        frame = frame.f_back
+    return False
+
+
+def _silence_stdout() -> None:
+    """Point stdout at /dev/null, so that the interpreter's final flush does not fail again."""
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    os.dup2(devnull, sys.stdout.fileno())
+    os.close(devnull)
+
+
+def _flush_stdout() -> None:
+    """
+    Flush stdout, so that a full disk or a closed pipe is found while the verb can say so.
+
+    Left to the interpreter's exit (stdout is block-buffered when it is not a terminal), the
+    failure is two lines of "Exception ignored" and exit code 120.
+    """
+    try:
+        sys.stdout.flush()
+    except OSError as err:
+        _silence_stdout()
+        raise OSError(err.errno, err.strerror, 'stdout') from None
+
+
+def _interrupted(name: str) -> int:
+    print(f'{name}: interrupted', file=sys.stderr)
+    return EXIT_INTERRUPTED
 
 
 def _os_error(err: OSError) -> str:
@@ -83,28 +154,41 @@ def _os_error(err: OSError) -> str:
 
 def run_verb(argv: Optional[list[str]] = None) -> int:
     """Parse the command line, run the verb and return its exit code (see the module)."""
-    try:
-        args = build_parser().parse_args(argv)
-    except SystemExit as done:   # --help (0) or a usage error (2), already printed
-        return done.code if isinstance(done.code, int) else 0
-    name = f'robotica {args.verb}'
     # SIGTERM ends a verb as Ctrl-C does: its cleanup runs (a run stops its nodes).
-    signal.signal(signal.SIGTERM, _terminate)
+    previous = {s: signal.signal(s, _interrupt) for s in (signal.SIGINT, signal.SIGTERM)}
     try:
-        return args.handler(args)
+        return _run(argv)
+    finally:
+        for signum, handler in previous.items():
+            signal.signal(signum, handler)
+
+
+def _run(argv: Optional[list[str]]) -> int:
+    words = sys.argv[1:] if argv is None else argv
+    name = ' '.join(['robotica', *[w for w in words if not w.startswith('-')][:1]])
+    try:
+        try:
+            args = build_parser().parse_args(argv)
+        except SystemExit as done:   # --help (0) or a usage error (2), already printed
+            return done.code if isinstance(done.code, int) else 0
+        name = ' '.join(['robotica', args.verb] + ([args.action] if 'action' in args else []))
+        usage, failures = usage_errors(), failure_errors()
+    except KeyboardInterrupt:
+        return _interrupted(name)
+    try:
+        code = args.handler(args)
+        _flush_stdout()
+        return code
     except BrokenPipeError:
-        # The reader went away (| head): nothing more to say, and nowhere to say it. Point
-        # stdout at /dev/null so that the interpreter's final flush does not fail again.
-        devnull = os.open(os.devnull, os.O_WRONLY)
-        os.dup2(devnull, sys.stdout.fileno())
+        # The reader went away (| head): nothing more to say, and nowhere to say it.
+        _silence_stdout()
         return EXIT_BROKEN_PIPE
     except KeyboardInterrupt:
-        print(f'{name}: interrupted', file=sys.stderr)
-        return EXIT_INTERRUPTED
-    except USAGE_ERRORS as err:
+        return _interrupted(name)
+    except usage as err:
         print(f'{name}: error: {one_line(str(err))}', file=sys.stderr)
         return 2
-    except FAILURE_ERRORS as err:
+    except failures as err:
         print(f'{name}: {one_line(str(err))}', file=sys.stderr)
         return 1
     except OSError as err:

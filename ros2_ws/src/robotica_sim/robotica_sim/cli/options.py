@@ -3,7 +3,8 @@ Argument types of the ``robotica`` verbs: numbers with their ranges, and ROS dom
 
 Each is an ``argparse`` ``type``: a value out of range is refused while the command line is
 parsed (one line, exit 2), so that no verb starts work with a value it cannot honour (a replay
-at ``--rate 1e-9`` that never ends, a report that tries to draw the robot every nanosecond).
+at ``--rate 1e-9`` that never ends, a report that tries to draw the robot every nanosecond, an
+empty path that would mean the current directory).
 
 >>> real(0.0, 10.0)('2.5'), integer(1)('3')
 (2.5, 3)
@@ -13,10 +14,12 @@ argparse.ArgumentTypeError: must be > 0 and <= 10, got 0
 """
 import argparse
 import math
+from pathlib import Path
+import tempfile
 from typing import Callable, Optional
 
 __all__ = ['DDS_SAFE_DOMAIN_MAX', 'DOMAIN_ID_MAX', 'domain_id', 'domain_warning', 'integer',
-           'real']
+           'nonempty', 'output_problem', 'path', 'real']
 
 DOMAIN_ID_MAX = 232
 """The largest ROS 2 domain id: above it the DDS ports pass 65535."""
@@ -68,6 +71,58 @@ def integer(low: Optional[int] = None, high: Optional[int] = None) -> Callable[[
         return value
     parse.__name__ = 'integer'
     return parse
+
+
+def nonempty(value: str) -> str:
+    """
+    Parse a name or path that must not be empty.
+
+    >>> nonempty('demo')
+    'demo'
+    >>> nonempty('')
+    Traceback (most recent call last):
+    argparse.ArgumentTypeError: must not be empty
+    """
+    if not value.strip():
+        raise argparse.ArgumentTypeError('must not be empty')
+    return value
+
+
+def path(value: str) -> Path:
+    """
+    Parse a path; an empty one is refused (``Path('')`` is the current directory).
+
+    >>> path('runs/demo/bag').as_posix()
+    'runs/demo/bag'
+    """
+    return Path(nonempty(value))
+
+
+def output_problem(output: Path, directory: bool = False) -> str:
+    """
+    Return why a verb could not write ``output`` where it is asked for, '' when it can.
+
+    A verb asks before its work (a grading, a report), so that a path that cannot be written
+    is a usage error found at once, not after minutes of work. ``directory``: ``output`` is a
+    directory, created with its parents; else a file, whose directory must exist. A file is
+    created and removed there to learn whether the file system accepts one (a read-only
+    directory, ``/sys``). A later failure to write (a full disk) is an I/O error.
+
+    >>> output_problem(Path('/'), directory=False), output_problem(Path('/none/x.json'))
+    ('/ is a directory', 'no directory /none')
+    """
+    if not directory and output.is_dir():
+        return f'{output} is a directory'
+    folder = output if directory else output.parent
+    if not directory and not folder.is_dir():
+        return f'no directory {folder}'
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+        with tempfile.TemporaryFile(dir=folder):
+            pass
+    except OSError as err:
+        return f'cannot write into {folder}: {err.strerror or err}'
+    return ''
 
 
 def domain_id(text: str) -> int:

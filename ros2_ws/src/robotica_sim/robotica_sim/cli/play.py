@@ -4,22 +4,22 @@ Replay a recorded bag: its topics republished in time order, with /clock, at a r
 The ``ros2 bag play`` of the pip route (rosbag2 cannot be installed from PyPI). Every selected
 topic (``--topics``; all by default) is published again as recorded (serialized, not decoded)
 at its receive time in the bag, scaled by ``--rate``, on its own name or the one ``--remap``
-gives it. ``/clock`` is replayed when the bag has it (``robotica run`` records it); otherwise it
-is published at each message's bag time, so nodes with ``use_sim_time`` follow the replay.
-Publishers are reliable; a topic with a single message (a path, a model) is also
-transient-local, so that a node started later still receives it. The player waits ``--wait``
-seconds for subscribers to match before it starts, shows its progress on stderr and exits with
-0 at the end, 1 for a bag it cannot read, 2 for bad arguments, 130 on Ctrl-C or SIGTERM.
+gives it (two topics on one name are refused). ``/clock`` is replayed when the bag has it
+(``robotica run`` records it); otherwise it is published at each message's bag time, so nodes
+with ``use_sim_time`` follow the replay. Publishers are reliable; a topic with a single message
+(a path, a model) is also transient-local, so that a node started later still receives it. The
+player waits ``--wait`` seconds for subscribers to match before it starts, shows its progress on
+stderr and exits with 0 at the end, 1 for a bag it cannot read, 2 for bad arguments (a topic the
+bag does not have, a remapping that is not a ROS name), 130 on Ctrl-C or SIGTERM.
 """
 import argparse
-from pathlib import Path
 import sys
 import time
 
 from robotica_sim.bags.info import BagError
 from robotica_sim.bags.player import open_playback, parse_remaps, wall_time
 from robotica_sim.bags.typestore import message_class
-from robotica_sim.cli.options import real
+from robotica_sim.cli.options import path, real
 
 HELP = 'republish a bag in time order with /clock'
 EPILOG = """examples:
@@ -35,7 +35,7 @@ MAX_RATE = 1e6
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Add the arguments of ``robotica play``."""
-    parser.add_argument('bag', type=Path, help='bag directory (with metadata.yaml)')
+    parser.add_argument('bag', type=path, help='bag directory (with metadata.yaml)')
     parser.add_argument('--rate', type=real(MIN_RATE, MAX_RATE), default=1.0,
                         help=f'speed-up of the replay ({MIN_RATE:g} to {MAX_RATE:g}; 2: twice '
                         'as fast)')
@@ -50,12 +50,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def main(args: argparse.Namespace) -> int:
     """Replay the bag; return the exit code."""
-    try:
-        remaps = parse_remaps(args.remap)
-    except ValueError as err:
-        print(f'robotica play: error: {err}', file=sys.stderr)
-        return 2
-    playback = open_playback(args.bag, args.topics, remaps)
+    # A SelectionError (a remapping or topic that cannot be) is one line and exit 2, a BagError
+    # one line and exit 1 (robotica_sim.cli.main).
+    playback = open_playback(args.bag, args.topics, parse_remaps(args.remap))
     import rclpy
     from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
     from rclpy.signals import SignalHandlerOptions
@@ -84,9 +81,7 @@ def main(args: argparse.Namespace) -> int:
         outputs = {t.output for t in playback.topics.values() if t.name in publishers}
         clock = None if '/clock' in outputs else node.create_publisher(Clock, '/clock', 10)
         time.sleep(args.wait)   # discovery: let subscribers match before the first message
-        return _play(playback, publishers, clock, args)
-    except KeyboardInterrupt:
-        return 130
+        return _play(playback, publishers, clock, args)   # Ctrl-C: 'interrupted', 130 (cli.main)
     finally:
         playback.close()
         node.destroy_node()

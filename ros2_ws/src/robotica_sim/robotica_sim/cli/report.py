@@ -12,15 +12,16 @@ figure with a caption.
 
 The report goes to --output, by default ``<run>/report`` when the bag directory is named
 ``bag`` (``runs/<run>/bag``, as ``robotica run`` writes it), else ``<bag>_report`` beside the
-bag. Exit codes: 0 written; 1 not a bag, a truncated bag or nothing to plot; 2 bad arguments or
-an output directory that cannot be written.
+bag. Exit codes: 0 written; 1 not a bag, a truncated bag, nothing to plot or a write that failed
+(a full disk); 2 bad arguments or an output directory that cannot be written (found before the
+figures are drawn).
 """
 import argparse
-from pathlib import Path
 import sys
 import time
 
-from robotica_sim.cli.options import real
+from robotica_sim.cli.main import one_line
+from robotica_sim.cli.options import output_problem, path, real
 from robotica_sim.grading.report import default_output, write_report
 from robotica_sim.grading.series import load_run
 
@@ -35,8 +36,8 @@ MAX_ROBOTS = 1000   # robots drawn on the trajectory figure
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Add the arguments of ``robotica report``."""
-    parser.add_argument('bag', type=Path, help='bag directory (with metadata.yaml)')
-    parser.add_argument('--output', '-o', type=Path, metavar='DIR',
+    parser.add_argument('bag', type=path, help='bag directory (with metadata.yaml)')
+    parser.add_argument('--output', '-o', type=path, metavar='DIR',
                         help='directory of the report (created; files of the same names are '
                         'replaced); default <run>/report for runs/<run>/bag, else <bag>_report')
     parser.add_argument('--robot-every', type=real(0.0, 1e7, low_open=True), metavar='SECONDS',
@@ -65,15 +66,17 @@ def main(args: argparse.Namespace) -> int:
               f'{span / args.robot_every:.3g} times over the {span:g} s run; at most '
               f'{MAX_ROBOTS}: use >= {span / MAX_ROBOTS:.3g}', file=sys.stderr)
         return 2
+    problem = output_problem(output, directory=True)   # before any figure is drawn
+    if problem:
+        print(f'robotica report: error: cannot write the report into {output}: {problem}',
+              file=sys.stderr)
+        return 2
     try:
         report = write_report(run, output, args.robot_every, progress)
     except ValueError as err:   # the scenario's GPS origin
-        print(f'robotica report: {err}', file=sys.stderr)
+        print(f'robotica report: {one_line(str(err))}', file=sys.stderr)
         return 1
-    except OSError as err:
-        print(f'robotica report: cannot write the report into {output}: '
-              f'{err.strerror or err}', file=sys.stderr)
-        return 2
+    # A write that fails later (a full disk) is an OSError: one line and exit 1 (cli.main).
     progress(f'done in {time.perf_counter() - start:.1f} s')
     print(f'{report.index} ({len(report.figures)} figures: '
           f'{", ".join(f.path.name for f in report.figures)})')

@@ -25,7 +25,8 @@ from rclpy.qos import QoSProfile, ReliabilityPolicy
 from rclpy.signals import SignalHandlerOptions
 from robotica_sim.bags.info import BagError
 from robotica_sim.bags.repair import partial_reason, repair_command
-from robotica_sim.cli.options import domain_id, domain_warning, real
+from robotica_sim.bags.run_record import COMPLETED, record_end
+from robotica_sim.cli.options import domain_id, domain_warning, nonempty, path, real
 from robotica_sim.grading.summary import summarize_bag
 from robotica_sim.runs.plan import NodeSpec, plan_run, recorded_topics
 from robotica_sim.runs.scenario import load_scenario, with_overrides
@@ -46,6 +47,7 @@ GRAPH_WAIT = 5.0     # [s] wall clock, see _wait_for_graph
 CALL_RETRY = 2.0     # [s] wall clock, see _call
 SAFE_STOP = 1.0      # [s] simulated after a node died: the simulator's cmd_timeout 0.5 s + 0.5
 SAFE_STOP_WALL = 5.0     # [s] wall clock, the longest wait for that stop
+MIN_TIMEOUT = 1.0        # [s] wall clock: a shorter wait cannot cover one start of the nodes
 STOP_ORDER = ['simulator', 'path_tracker', 'joint_controller', 'odometry', 'encoder_emulator',
               'gyro_emulator', 'compass_emulator', 'gps_emulator', 'path_publisher',
               'joint_trajectory_publisher', 'recorder']
@@ -55,10 +57,46 @@ class RunFailed(Exception):
     """The run could not be completed; the message says why."""
 
 
+class _Executor(SingleThreadedExecutor):
+    """
+    An executor that turns Ctrl-C and SIGTERM into KeyboardInterrupt between callbacks.
+
+    Raised inside a callback that rclpy's C++ side is converting a message for, a
+    KeyboardInterrupt surfaced as ``RuntimeError: Unable to convert call argument``: an
+    "internal error" instead of "interrupted". While the executor is used, the signals are only
+    noted (:meth:`interrupts`), and every spin ends by raising KeyboardInterrupt if one came.
+    """
+
+    def __init__(self) -> None:
+        super().__init__()
+        self._signals: list[int] = []
+
+    def interrupts(self) -> dict:
+        """Note SIGINT and SIGTERM from now on; return the handlers to restore."""
+        def note(signum, frame) -> None:
+            self._signals.append(signum)
+        return {s: signal.signal(s, note) for s in (signal.SIGINT, signal.SIGTERM)}
+
+    def _raise_if_interrupted(self) -> None:
+        if self._signals:
+            raise KeyboardInterrupt
+
+    def spin_once(self, timeout_sec: Optional[float] = None) -> None:
+        """Spin once, then raise KeyboardInterrupt if SIGINT or SIGTERM came."""
+        super().spin_once(timeout_sec)
+        self._raise_if_interrupted()
+
+    def spin_once_until_future_complete(self, future, timeout_sec=None) -> None:
+        """Spin once for ``future``, then raise KeyboardInterrupt if a signal came."""
+        super().spin_once_until_future_complete(future, timeout_sec)
+        self._raise_if_interrupted()
+
+
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Add the arguments of ``robotica run``."""
-    parser.add_argument('scenario', help='scenario YAML file, or the name of a shipped one')
-    parser.add_argument('--output-dir', type=Path, default=None,
+    parser.add_argument('scenario', type=nonempty,
+                        help='scenario YAML file, or the name of a shipped one')
+    parser.add_argument('--output-dir', type=path, default=None,
                         help='run directory to create (default: runs/<scenario>-<time>)')
     parser.add_argument('--pacing', choices=['lockstep', 'realtime'], default=None,
                         help="override the scenario's pacing")
@@ -67,10 +105,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument('--domain-id', type=domain_id, default=None,
                         help='ROS_DOMAIN_ID of the run, 0-232 (above 101 with a warning: see '
                         'docs/scenarios.md) (default: $ROS_DOMAIN_ID, else random)')
-    parser.add_argument('--discovery-timeout', type=real(0.0, 3600.0, low_open=True),
+    parser.add_argument('--discovery-timeout', type=real(MIN_TIMEOUT, 3600.0),
                         default=30.0,
                         help='longest wait for the nodes to discover each other [s]')
-    parser.add_argument('--timeout', type=real(0.0, 1e7, low_open=True), default=None,
+    parser.add_argument('--timeout', type=real(MIN_TIMEOUT, 1e7), default=None,
                         help='longest wall-clock time of the run [s] (default: 120 + 10 x '
                         'duration)')
     parser.add_argument('--json', action='store_true', help='print the summary as JSON')
@@ -262,8 +300,9 @@ def _simulate(args, scenario, plan: list[NodeSpec], run_dir: Path,
     _log(args, f'started {len(nodes)} nodes (domain {os.environ["ROS_DOMAIN_ID"]}), '
                'waiting for discovery')
     node = rclpy.create_node('robotica_run')
-    executor = SingleThreadedExecutor()
+    executor = _Executor()
     executor.add_node(node)
+    handlers = executor.interrupts()
     sim_time = [0.0]
     node.create_subscription(
         Clock, '/clock', lambda m: sim_time.__setitem__(0, m.clock.sec + m.clock.nanosec * 1e-9),
@@ -295,7 +334,7 @@ def _simulate(args, scenario, plan: list[NodeSpec], run_dir: Path,
             elif sim_time[0] >= safe_stop[0] or time.monotonic() >= safe_stop[1]:
                 break
             if time.monotonic() - start > timeout:
-                raise RunFailed(f'the run took longer than {timeout:.0f} s wall clock')
+                raise RunFailed(f'the run took longer than {timeout:g} s wall clock')
         if fault is not None:
             raise _death(supervisor, *fault)
         wall = time.monotonic() - start
@@ -305,6 +344,8 @@ def _simulate(args, scenario, plan: list[NodeSpec], run_dir: Path,
             raise RunFailed('the simulator failed:\n' + supervisor.tail('simulator'))
         return wall
     finally:
+        for signum, handler in handlers.items():
+            signal.signal(signum, handler)
         executor.shutdown()
         node.destroy_node()
 
@@ -339,19 +380,21 @@ def main(args: argparse.Namespace) -> int:
         return 2
     supervisor = ProcessSupervisor(run_dir / 'logs', dict(os.environ))
     rclpy.init(signal_handler_options=SignalHandlerOptions.NO)
-    code = 0
+    code, ended = 0, COMPLETED
     try:
         _simulate(args, scenario, plan, run_dir, supervisor)
     except RunFailed as err:
         print(f'robotica run: failed: {err}', file=sys.stderr)
-        code = 1
+        code, ended = 1, f'failed: {str(err).splitlines()[0]}'
     except KeyboardInterrupt:
         print('\nrobotica run: interrupted; stopping the nodes', file=sys.stderr)
-        code = 130
+        code, ended = 130, 'interrupted (Ctrl-C or SIGTERM)'
     finally:
         codes = supervisor.stop_all(STOP_ORDER)
         rclpy.try_shutdown()
     faults = _faults(supervisor)
+    if faults and ended == COMPLETED:
+        ended = '; '.join(f'node {name} {text}' for name, text in faults.items())
     if codes.get('recorder') not in (0, None) and 'recorder' not in faults:
         print(f'robotica run: the recorder exited with {codes["recorder"]}:\n'
               + supervisor.tail('recorder'), file=sys.stderr)
@@ -369,6 +412,12 @@ def main(args: argparse.Namespace) -> int:
     if not (bag / 'metadata.yaml').is_file():
         print(f'robotica run: no bag was written; logs in {run_dir / "logs"}', file=sys.stderr)
         return code or 1
+    try:   # what info, grade and report show of the run: how it ended, not only how it began
+        record_end(bag, ended)
+    except OSError as err:
+        print(f'robotica run: cannot record how the run ended ({ended}) in {bag}: '
+              f'{err.strerror or err}', file=sys.stderr)
+        code = code or 1
     try:
         summary = summarize_bag(bag)
     except BagError as err:

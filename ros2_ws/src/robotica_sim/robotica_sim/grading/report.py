@@ -202,11 +202,22 @@ def _span(run: RunSeries) -> float:
 
 
 def _is_arm(run: RunSeries) -> bool:
-    """Return whether the run is a manipulator's: from its scenario, else from its topics."""
+    """
+    Return whether the run is a manipulator's: from its topics, else from its scenario.
+
+    The topics are what was recorded: a bag with joint topics and no mobile one is an arm's
+    whatever its scenario says (and the reverse), so that a scenario that does not describe
+    the bag cannot hide what it holds. A bag with both or neither follows its scenario.
+    """
+    arm = any(s is not None for s in (run.joint_states, run.controller, run.torques))
+    mobile = any(s is not None for s in (run.truth, run.odom, run.cmd, run.tracking_error)) \
+        or run.path is not None
+    if arm != mobile:
+        return arm
     robot = (run.scenario or {}).get('robot')
     if isinstance(robot, dict) and 'type' in robot:
         return robot['type'] == 'manipulator'
-    return run.controller is not None or run.torques is not None or run.is_manipulator
+    return run.controller is not None or run.torques is not None
 
 
 def _plans(run: RunSeries, every: float) -> list[_Plan]:

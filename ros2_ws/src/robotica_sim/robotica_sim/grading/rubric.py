@@ -26,7 +26,7 @@ from typing import Any
 
 from robotica_sim.grading.metrics import MetricParams, METRICS, MetricValue, RunMetrics
 from robotica_sim.runs.shipped import resolve_shipped
-import yaml
+from robotica_sim.runs.strict_yaml import read_strict_yaml
 
 __all__ = ['Bound', 'CheckResult', 'Rubric', 'RubricError', 'check_metrics', 'load_rubric',
            'parse_rubric', 'resolve_rubric']
@@ -120,8 +120,9 @@ def _params(value: Any, where: str) -> MetricParams:
     if unknown:
         raise RubricError(f'{where}: unknown parameter(s) {", ".join(unknown)}; known: '
                           f'{", ".join(names)}')
+    numbers = {k: _number(v, f'{where}.{k}') for k, v in value.items()}
     try:
-        return MetricParams(**{k: _number(v, f'{where}.{k}') for k, v in value.items()})
+        return MetricParams(**numbers)
     except ValueError as err:
         raise RubricError(f'{where}: {err}') from None
 
@@ -185,16 +186,13 @@ def resolve_rubric(name_or_path: str) -> Path:
 
 
 def load_rubric(path: str | Path) -> Rubric:
-    """Read and validate the rubric file ``path``; RubricError when it cannot be used."""
-    try:
-        text = Path(path).read_text()
-    except (OSError, UnicodeDecodeError) as err:
-        raise RubricError(f'{path}: cannot read the rubric: {err}') from None
-    try:
-        data = yaml.safe_load(text)
-    except yaml.YAMLError as err:
-        raise RubricError(f'{path}: not valid YAML: {" ".join(str(err).split())}') from None
-    return parse_rubric(data, str(path))
+    """
+    Read and validate the rubric file ``path``; RubricError when it cannot be used.
+
+    Read as strictly as a scenario (:func:`robotica_sim.runs.strict_yaml.read_strict_yaml`): a
+    check or a key given twice is refused, not silently replaced by the last one.
+    """
+    return parse_rubric(read_strict_yaml(path, RubricError), str(path))
 
 
 def _check(name: str, bound: Bound, metrics: RunMetrics) -> CheckResult:

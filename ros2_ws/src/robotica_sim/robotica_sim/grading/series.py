@@ -127,7 +127,7 @@ class RunSeries:
     bag: Path
     scenario: dict | None               # parsed custom_data 'robotica.scenario.yaml'
     duration: float                     # [s] last /clock (0 if none)
-    counts: dict[str, int]              # messages per topic (every topic of the bag)
+    counts: dict[str, int]              # messages per topic read (every topic of the bag)
     path: NDArray[np.float64] | None    # (N, 2) [m] /path positions, path frame
     path_times: NDArray[np.float64] | None  # (N,) [s] pose stamps if strictly increasing
     truth: Series | None
@@ -316,8 +316,8 @@ def load_run(bag: str | Path, topics: Iterable[str] | None = None) -> RunSeries:
     Raises
     ------
     BagError
-        If ``bag`` is not a readable bag (see :func:`robotica_sim.bags.info.open_bag`), or its
-        data cannot be read or decoded.
+        If ``bag`` is not a readable bag (see :func:`robotica_sim.bags.info.open_bag`), its
+        data cannot be read or decoded, or it holds no message.
     ValueError
         If ``topics`` names a topic that :func:`load_run` does not know.
 
@@ -333,7 +333,8 @@ def load_run(bag: str | Path, topics: Iterable[str] | None = None) -> RunSeries:
         roles_by_topic = {t: r for t, r in roles_by_topic.items() if t in wanted}
     reader = open_bag(path)
     try:
-        counts = {c.topic: c.msgcount for c in reader.connections}
+        # Counted as read, not taken from metadata.yaml (which may not describe the data).
+        counts = {c.topic: 0 for c in reader.connections}
         msgtypes = {c.topic: c.msgtype for c in reader.connections}
         connections = [c for c in reader.connections if c.topic in roles_by_topic
                        and c.msgtype == MSGTYPES[roles_by_topic[c.topic]]]
@@ -344,9 +345,11 @@ def load_run(bag: str | Path, topics: Iterable[str] | None = None) -> RunSeries:
         receive_times: dict[str, list[int]] = {role: [] for role in _SCALAR}
         joint_msgs: dict[str, list[tuple[Any, int]]] = {role: [] for role in _JOINT_FIELDS}
         last: dict[str, tuple[Any, bytes]] = {}
-        # An empty connection list would mean "no filter" to rosbags: read nothing then.
-        for connection, receive, raw in (reader.messages(connections=connections)
-                                         if connections else ()):
+        decoded_ids = {c.id for c in connections}
+        for connection, receive, raw in reader.messages():
+            counts[connection.topic] += 1
+            if connection.id not in decoded_ids:
+                continue
             role = roles_by_topic[connection.topic]
             if role in ('clock', 'status', 'path'):   # only the last one matters
                 last[role] = (connection, raw)
@@ -363,6 +366,8 @@ def load_run(bag: str | Path, topics: Iterable[str] | None = None) -> RunSeries:
         raise BagError(f'{path}: cannot read the bag: {err}') from None
     finally:
         reader.close()
+    if not any(counts.values()):
+        raise BagError(f'{path}: the bag holds no message (its recorder received nothing)')
     record = run_record(custom_data(path))
     series = {role: _scalar_series(r, receive_times[role], _SCALAR[role][0]) if r else None
               for role, r in rows.items()}

@@ -23,9 +23,9 @@ from typing import Any, Optional
 from robotica_kin.mobile.odometry import ODOMETRY_METHODS
 from robotica_kin.mobile.vehicles import VEHICLE_TYPES
 from robotica_sim.runs.shipped import resolve_shipped
+from robotica_sim.runs.strict_yaml import read_strict_yaml
 from robotica_sim.sensors.gps import GPS_PRESETS
 from robotica_sim.sensors.gyro import GYRO_PRESETS
-import yaml
 
 
 class ScenarioError(ValueError):
@@ -127,8 +127,6 @@ class TrackerSpec:
 
 
 ARM_MODELS = ('puma560', 'two_link_arm')
-MAX_FILE_SIZE = 1_000_000           # [bytes] of a scenario file
-MAX_VALUES = 1_000_000              # keys, values and list items of a scenario
 MIN_STEP_PERIOD = 1e-4              # [s] simulated
 MAX_STEPS = 10_000_000              # simulation steps of a run (duration / step_period)
 SEED_MAX = (2**31 - 1) // 10 - 1
@@ -375,79 +373,10 @@ def resolve_scenario_path(name_or_path: str) -> Path:
         raise ScenarioError(str(err)) from None
 
 
-class _UniqueKeyLoader(yaml.SafeLoader):
-    """A safe YAML loader that refuses a key given twice in a mapping (else the last wins)."""
-
-    def construct_mapping(self, node: yaml.MappingNode, deep: bool = False) -> dict:
-        """Return the mapping of ``node``; ConstructorError for a key given twice."""
-        self.flatten_mapping(node)   # merge keys (<<) first, as SafeLoader does
-        seen = set()
-        for key_node, _ in node.value:
-            key = self.construct_object(key_node, deep=True)
-            if isinstance(key, (str, int, float, bool)) or key is None:
-                if key in seen:
-                    raise yaml.constructor.ConstructorError(
-                        None, None, f'key {key!r} given twice',
-                        key_node.start_mark)
-                seen.add(key)
-        return super().construct_mapping(node, deep)
-
-
-def _read_yaml(path: Path) -> Any:
-    """
-    Return the YAML document of a small UTF-8 file, or raise ScenarioError in one line.
-
-    Refused: a file that cannot be read, larger than :data:`MAX_FILE_SIZE`, not UTF-8 text,
-    not YAML, with a key given twice in a mapping, or of more than :data:`MAX_VALUES` values
-    once its aliases are expanded.
-    """
-    try:
-        with open(path, 'rb') as file:
-            raw = file.read(MAX_FILE_SIZE + 1)
-    except OSError as err:
-        raise ScenarioError(f'{path}: cannot read: {err.strerror or err}') from None
-    if len(raw) > MAX_FILE_SIZE:
-        raise ScenarioError(f'{path}: larger than {MAX_FILE_SIZE} bytes: not a scenario')
-    try:
-        text = raw.decode('utf-8')
-    except UnicodeDecodeError as err:
-        raise ScenarioError(f'{path}: not a text file (not UTF-8: byte 0x{raw[err.start]:02x} '
-                            f'at offset {err.start})') from None
-    try:
-        data = yaml.load(text, Loader=_UniqueKeyLoader)
-    except yaml.YAMLError as err:
-        mark = getattr(err, 'problem_mark', None)
-        where = f' at line {mark.line + 1}, column {mark.column + 1}' if mark else ''
-        reason = getattr(err, 'problem', None) or str(err)
-        raise ScenarioError(f'{path}: not valid YAML{where}: {" ".join(reason.split())}') \
-            from None
-    except RecursionError:
-        raise ScenarioError(f'{path}: nested too deeply') from None
-    if _too_many_values(data, MAX_VALUES):   # aliases repeat a value: a few bytes can hold 1e9
-        raise ScenarioError(f'{path}: more than {MAX_VALUES} values (YAML aliases?)')
-    return data
-
-
-def _too_many_values(data: Any, budget: int) -> bool:
-    """Return whether ``data`` holds more than ``budget`` values, aliases counted each time."""
-    stack, count = [data], 0
-    while stack:
-        item = stack.pop()
-        count += 1
-        if count > budget:
-            return True
-        if isinstance(item, dict):
-            stack.extend(item.keys())
-            stack.extend(item.values())
-        elif isinstance(item, list):
-            stack.extend(item)
-    return False
-
-
 def load_scenario(name_or_path: str) -> Scenario:
     """Load and validate a scenario (a YAML file or a shipped scenario's name)."""
     path = resolve_scenario_path(name_or_path)
-    data = _read_yaml(path)
+    data = read_strict_yaml(path, ScenarioError)
     if not isinstance(data, dict):
         raise ScenarioError(f'{path}: a scenario is a YAML mapping, got {_short(data)}')
     data.setdefault('name', path.stem)

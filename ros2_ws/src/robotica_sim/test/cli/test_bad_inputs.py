@@ -270,7 +270,7 @@ VERB_CASES = [
     ('play {missing}', 1), ('play {folder}', 1), ('play {binary}', 1),
     ('play {bag} --rate 0', 2), ('play {bag} --rate 1e-9', 2), ('play {bag} --rate inf', 2),
     ('play {bag} --wait -1', 2), ('play {bag} --remap odom', 2),
-    ('play {bag} --topics /nothing', 1),
+    ('play {bag} --topics /nothing', 2),
     ('bag repair {missing}', 1), ('bag repair {file}', 1), ('bag repair {folder}', 1),
     ('bag fix {bag}', 2),
     ('grade {missing}', 1), ('grade {folder}', 1), ('grade {binary}', 1),

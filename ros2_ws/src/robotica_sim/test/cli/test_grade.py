@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 from robotica_sim.bags.typestore import jazzy_typestore
 from robotica_sim.cli import grade
+from robotica_sim.cli.main import run_verb
 from rosbags.rosbag2 import StoragePlugin, Writer
 
 RUBRIC = """rubric: straight line
@@ -94,9 +95,8 @@ def test_what_ran_is_shown_not_the_scenario_file(tmp_path, capsys):
 
 
 def run_grade(*argv):
-    parser = argparse.ArgumentParser(prog='robotica grade', epilog=grade.EPILOG)
-    grade.add_arguments(parser)
-    return grade.main(parser.parse_args([str(a) for a in argv]))
+    """Run ``robotica grade`` as the command does (errors mapped to exit codes by cli.main)."""
+    return run_verb(['grade', *(str(a) for a in argv)])
 
 
 @pytest.fixture

@@ -49,7 +49,7 @@ def test_files_malformed_yaml_and_missing(tmp_path):
     bad.write_text('checks:\n  completion: {min: 0.9\n')
     with pytest.raises(RubricError, match='bad.yaml: not valid YAML'):
         load_rubric(bad)
-    with pytest.raises(RubricError, match='cannot read the rubric'):
+    with pytest.raises(RubricError, match='none.yaml: cannot read'):
         load_rubric(tmp_path / 'none.yaml')
     good = tmp_path / 'good.yaml'
     good.write_text('checks:\n  completion: {min: 0.9}\n')

@@ -42,7 +42,7 @@ def test_play_refuses_bad_arguments(bag, tmp_path):
     command = [sys.executable, '-m', 'robotica_sim.cli.main', 'play']
     for arguments, code, text in (([str(bag), '--rate', '0'], 2, '--rate: must be >= 0.001'),
                                   ([str(bag), '--remap', 'a=b'], 2, 'must read /from:=/to'),
-                                  ([str(bag), '--topics', '/c'], 1, 'no topic /c'),
+                                  ([str(bag), '--topics', '/c'], 2, 'no topic /c'),
                                   ([str(tmp_path)], 1, 'not a bag directory')):
         done = subprocess.run(command + arguments, capture_output=True, text=True, timeout=60)
         assert done.returncode == code, (arguments, done.stderr)
