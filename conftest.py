@@ -2,7 +2,9 @@
 
 Every test that touches ROS gets its own ``ROS_DOMAIN_ID`` and loopback-only discovery
 (``ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST``, set by ``scripts/env.sh`` and enforced here), so
-tests never see each other's nodes and no DDS traffic leaves the machine.
+tests never see each other's nodes and no DDS traffic leaves the machine. When the suite runs in
+several processes (``pytest -n``, as ``scripts/test.sh`` does), each process has its own share
+of the domain ids, so two tests running at once never share a domain.
 """
 import itertools
 import os
@@ -13,13 +15,27 @@ import time
 
 import pytest
 
-_domains = itertools.count((os.getpid() % 40) * 2 + 10)
+
+def _worker() -> tuple[int, int]:
+    """Return this pytest process's index and how many run the suite (``pytest -n``)."""
+    name = os.environ.get('PYTEST_XDIST_WORKER', '')
+    return (int(name[2:]) if name[:2] == 'gw' else 0), int(
+        os.environ.get('PYTEST_XDIST_WORKER_COUNT', '1'))
+
+
+WORKER, WORKERS = _worker()
+DOMAINS = range(1, 102)   # the ids whose DDS ports stay below the ephemeral range
+MY_DOMAINS = DOMAINS[WORKER::WORKERS]
+"""The domains of this process: each of ``pytest -n`` workers has its own, never shared."""
+if WORKERS > 1:   # tests that run on the session's domain (no ros_domain fixture): one each
+    os.environ['ROS_DOMAIN_ID'] = str(MY_DOMAINS[0])
+_domains = itertools.count(os.getpid() % 40)
 
 
 @pytest.fixture
 def ros_domain(monkeypatch):
-    """Give the test a fresh ROS domain (10..101) and loopback-only discovery."""
-    domain = next(_domains) % 92 + 10
+    """Give the test a fresh ROS domain of this process's own and loopback-only discovery."""
+    domain = MY_DOMAINS[1 + next(_domains) % (len(MY_DOMAINS) - 1)]
     monkeypatch.setenv('ROS_DOMAIN_ID', str(domain))
     monkeypatch.setenv('ROS_AUTOMATIC_DISCOVERY_RANGE', 'LOCALHOST')
     monkeypatch.delenv('ROS_LOCALHOST_ONLY', raising=False)
