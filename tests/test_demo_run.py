@@ -17,6 +17,7 @@ import json
 import math
 from pathlib import Path
 import subprocess
+from xml.etree import ElementTree
 
 from mcap.reader import make_reader
 import numpy as np
@@ -27,7 +28,8 @@ import yaml
 pytestmark = [pytest.mark.slow, pytest.mark.ros]
 SCENARIO = Path(__file__).resolve().parents[1] / 'ros2_ws/src/robotica_sim/scenarios/demo.yaml'
 EXPECTED = ['/clock', '/cmd_vel', '/odom', '/ground_truth/odom', '/joint_states',
-            '/wheel_encoders', '/path', '/path_tracker/tracking_error', '/simulator/status']
+            '/wheel_encoders', '/path', '/path_tracker/tracking_error', '/simulator/status',
+            '/tf', '/tf_static', '/robot_description']
 
 
 def distances_to_polyline(points: np.ndarray, vertices: np.ndarray) -> np.ndarray:
@@ -118,3 +120,43 @@ def test_cross_track_error_is_bounded(demo_run):
     assert np.linalg.norm(truth[-1] - path[-1]) < 0.1
     assert truth[:, 0].max() > path[:, 0].max() - 0.1
     assert truth[:, 1].max() > path[:, 1].max() - 0.1
+
+
+def _stamp(header) -> tuple[int, int]:
+    return header.stamp.sec, header.stamp.nanosec
+
+
+def _planar(position, orientation) -> tuple[float, float, float]:
+    return position.x, position.y, 2.0 * math.atan2(orientation.z, orientation.w)
+
+
+def test_bag_carries_the_rep105_tree_and_the_robot_description(demo_run):
+    # Latched once at start-up (robot description, static frames): in the bag only if the
+    # recorder subscribed transient local. On /tf, for every step: odom -> base_link equal to
+    # /odom of that step, map -> base_link_truth equal to the ground truth, and the wheels.
+    run_dir, _ = demo_run
+    scenario = yaml.safe_load(SCENARIO.read_text())
+    steps = round(scenario['duration'] / scenario['step_period'])
+    messages = _read(run_dir / 'bag')
+    (description,) = messages['/robot_description']
+    urdf = ElementTree.fromstring(description.data)
+    assert urdf.get('name') == 'differential_vehicle'
+    wheels = {j.get('name') for j in urdf.iter('joint') if j.get('type') == 'continuous'}
+    assert wheels == {'left_wheel_joint', 'right_wheel_joint'}
+    static = {(t.header.frame_id, t.child_frame_id)
+              for m in messages['/tf_static'] for t in m.transforms}
+    assert static == {('base_link', 'imu_link'), ('base_link', 'gps_link'), ('map', 'odom')}
+    frames: dict = {}
+    for msg in messages['/tf']:
+        for t in msg.transforms:
+            frames.setdefault((t.header.frame_id, t.child_frame_id), {})[_stamp(t.header)] = (
+                _planar(t.transform.translation, t.transform.rotation))
+    assert set(frames) == {('odom', 'base_link'), ('map', 'base_link_truth'),
+                           ('base_link', 'left_wheel_link'), ('base_link', 'right_wheel_link')}
+    for pair, poses in frames.items():
+        assert len(poses) == steps + 1, f'{pair}: one transform per state k = 0..{steps}'
+    for topic, pair in (('/odom', ('odom', 'base_link')),
+                        ('/ground_truth/odom', ('map', 'base_link_truth'))):
+        for msg in messages[topic]:
+            expected = _planar(msg.pose.pose.position, msg.pose.pose.orientation)
+            assert frames[pair][_stamp(msg.header)] == pytest.approx(expected, abs=1e-12)

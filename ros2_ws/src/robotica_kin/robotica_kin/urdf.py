@@ -29,8 +29,10 @@ A vehicle's URDF (:func:`vehicle_urdf`) has ``base_link`` on the ground under th
 wheels as cylinders on ``continuous`` joints (axis: a positive rate drives the contact point the
 way the kinematic model's positive wheel speed does) and, for the steered types, the steering
 joints that :meth:`~robotica_kin.mobile.vehicles.VehicleKinematics.joint_positions` publishes.
-The odometry wheels keep the simulator's default names ``left_wheel_joint`` and
-``right_wheel_joint``. The sensor frames are fixed children of ``base_link`` with its axes:
+The odometry wheels are named as the simulator publishes them,
+``VehicleKinematics.odometry_wheel_joints`` of :mod:`robotica_kin.mobile.vehicles` (one naming
+for both); a vehicle with no wheels of its own on the guide axle gets them as passive measuring
+wheels there. The sensor frames are fixed children of ``base_link`` with its axes:
 ``imu_link`` over the guide point at ``imu_height`` and ``gps_link``, the antenna, over it at
 ``antenna_height`` (the GPS emulator's parameter: its fixes are of the guide point raised by that
 height, so the frame sits where the emulated antenna is); both at the guide point because the
@@ -52,7 +54,8 @@ from numpy.typing import ArrayLike, NDArray
 from robotica_kin.bounds import MAX_FORCE_TORQUE, MAX_JOINT_VELOCITY
 from robotica_kin.dh import as_dyn_model, dh_model, DHModel, linktrans
 from robotica_kin.finite import finite_real
-from robotica_kin.mobile.vehicles import GEOMETRY_PARAMETERS, VEHICLE_TYPES, VehicleGeometry
+from robotica_kin.mobile.vehicles import (GEOMETRY_PARAMETERS, vehicle_kinematics, VEHICLE_TYPES,
+                                          VehicleGeometry)
 from robotica_kin.parameter_specs import parameter_values, ParameterSpec
 from robotica_kin.transforms import rpy2tr, tr2rpy
 
@@ -344,7 +347,11 @@ def vehicle_urdf(vehicle_type: str, geometry: VehicleGeometry | None = None, *,
       ``front_wheel_joint``; rear wheels ``left_wheel_joint``, ``right_wheel_joint`` at (0, ±b/2)
       (the bicycle: one ``rear_wheel_joint`` at the origin);
     - ackermann: ``front_left_steering_joint``, ``front_right_steering_joint`` at (l, ±b/2) with
-      ``front_left_wheel_joint``, ``front_right_wheel_joint``; rear wheels as the tricycle's.
+      ``front_left_wheel_joint``, ``front_right_wheel_joint``; rear wheels as the tricycle's;
+    - the odometry wheels (``odometry_wheel_joints`` of the type's kinematics, the names of the
+      simulator's ``joint_states``) of mecanum, omni_three, synchronous and bicycle, which have no
+      wheels of their own there: ``left_odometry_wheel_joint``, ``right_odometry_wheel_joint``
+      at (0, ±b/2).
 
     Sensor frames (fixed joints ``imu_joint``, ``gps_joint``, axes of ``base_link``):
     ``imu_link`` at (0, 0, ``imu_height``), ``gps_link`` at (0, 0, ``antenna_height``) [m].
@@ -425,6 +432,11 @@ def vehicle_urdf(vehicle_type: str, geometry: VehicleGeometry | None = None, *,
         else:
             _wheel(urdf, 'left_wheel_joint', 'base_link', (0.0, half_b, c), 0.0, geometry)
             _wheel(urdf, 'right_wheel_joint', 'base_link', (0.0, -half_b, c), 0.0, geometry)
+    wheel_joints = {joint.get('name') for joint in urdf.iter('joint')}
+    odometry_wheels = vehicle_kinematics(vehicle_type, geometry).odometry_wheel_joints
+    for name, y in zip(odometry_wheels, (half_b, -half_b)):
+        if name not in wheel_joints:   # measuring wheels under the guide point
+            _wheel(urdf, name, 'base_link', (0.0, y, c), 0.0, geometry)
     for sensor, height in heights.items():   # a small box for the IMU, a disc for the antenna
         link = ElementTree.SubElement(urdf, 'link', name=f'{sensor}_link')
         if sensor == 'imu':

@@ -19,7 +19,8 @@ import pytest
 from robotica_kin.dh import dh_model
 from robotica_kin.dynamics import inertia
 from robotica_kin.forward_kinematics import fkine, link_frames
-from robotica_kin.mobile.vehicles import GEOMETRY_PARAMETERS, VEHICLE_TYPES, VehicleGeometry
+from robotica_kin.mobile.vehicles import (GEOMETRY_PARAMETERS, vehicle_kinematics, VEHICLE_TYPES,
+                                          VehicleGeometry)
 from robotica_kin.parameter_specs import ParameterError
 from robotica_kin.robots import cylindrical_rpr, planar_rr, planar_rrr, puma560, two_link_arm
 from robotica_kin.transforms import rpy2tr, transl
@@ -189,6 +190,9 @@ GEOMETRY = VehicleGeometry(wheel_radius=0.15, track=0.5, wheelbase=0.9, base_rad
 C, B, L = GEOMETRY.wheel_radius, GEOMETRY.track, GEOMETRY.wheelbase
 H, R = GEOMETRY.half_length, GEOMETRY.base_radius
 FORWARD = (1.0, 0.0, 0.0)
+# Passive measuring wheels under the guide point, where a type has no wheels of its own there.
+MEASURING = {'left_odometry_wheel_joint': ((0.0, B / 2, C), FORWARD),
+             'right_odometry_wheel_joint': ((0.0, -B / 2, C), FORWARD)}
 BETAS = (0.0, 2.0 * math.pi / 3.0, 4.0 * math.pi / 3.0)
 # Wheel joint: (centre in base_link at zero steering, direction its positive rate drives along).
 WHEELS = {
@@ -200,18 +204,18 @@ WHEELS = {
                    'rear_right_wheel_joint': ((-H, -B / 2, C), FORWARD)},
     'mecanum': {f'{xn}_{yn}_wheel_joint': ((x, y, C), FORWARD)
                 for xn, x in (('front', H), ('rear', -H))
-                for yn, y in (('left', B / 2), ('right', -B / 2))},
+                for yn, y in (('left', B / 2), ('right', -B / 2))} | MEASURING,
     # Omni wheel i drives tangentially, d_i = (-sin β_i, cos β_i) (omnidirectional.py).
     'omni_three': {f'wheel_{k}_joint': ((R * math.cos(b), R * math.sin(b), C),
                                         (-math.sin(b), math.cos(b), 0.0))
-                   for k, b in enumerate(BETAS)},
+                   for k, b in enumerate(BETAS)} | MEASURING,
     'synchronous': {f'wheel_{k}_joint': ((R * math.cos(b), R * math.sin(b), C), FORWARD)
-                    for k, b in enumerate(BETAS)},
+                    for k, b in enumerate(BETAS)} | MEASURING,
     'tricycle': {'front_wheel_joint': ((L, 0.0, C), FORWARD),
                  'left_wheel_joint': ((0.0, B / 2, C), FORWARD),
                  'right_wheel_joint': ((0.0, -B / 2, C), FORWARD)},
     'bicycle': {'front_wheel_joint': ((L, 0.0, C), FORWARD),
-                'rear_wheel_joint': ((0.0, 0.0, C), FORWARD)},
+                'rear_wheel_joint': ((0.0, 0.0, C), FORWARD)} | MEASURING,
     'ackermann': {'front_left_wheel_joint': ((L, B / 2, C), FORWARD),
                   'front_right_wheel_joint': ((L, -B / 2, C), FORWARD),
                   'left_wheel_joint': ((0.0, B / 2, C), FORWARD),
@@ -251,6 +255,18 @@ def test_vehicle_wheels_are_where_the_geometry_says(vehicle_type):
         child = urdf.joint_map[name].child
         np.testing.assert_allclose(urdf.get_transform(child, 'base_link')[:3, 3], where[0],
                                    atol=1e-12)
+
+
+@pytest.mark.parametrize('vehicle_type', VEHICLE_TYPES)
+def test_the_simulated_odometry_wheels_are_wheels_of_the_urdf(vehicle_type):
+    # The simulator publishes the odometry wheels under these names: the URDF must have them
+    # as wheels on the guide axle's line (y = +-b/2), turning forward with a positive rate.
+    left, right = vehicle_kinematics(vehicle_type, GEOMETRY).odometry_wheel_joints
+    assert WHEELS[vehicle_type][left][0][1:] == (B / 2, C)
+    assert WHEELS[vehicle_type][right][0][1:] == (-B / 2, C)
+    model = pin.buildModelFromXML(vehicle_urdf(vehicle_type, GEOMETRY))
+    for name in (left, right):
+        assert model.joints[model.getJointId(name)].shortname() == 'JointModelRUBY'
 
 
 def test_steering_joints_have_the_steering_limit():

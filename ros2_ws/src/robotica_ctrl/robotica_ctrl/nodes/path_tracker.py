@@ -14,7 +14,9 @@ Topics: the pose in, from ``odom`` (nav_msgs/Odometry, the estimate) or, with ``
 = ``ground_truth``, from ``ground_truth/odom`` (the simulator's truth); ``~/path``
 (nav_msgs/Path, transient-local) in: when its poses carry strictly increasing stamps they are
 the timing of a trajectory (trajectory tracking; otherwise it moves along the path at
-``trajectory_tracking.reference_speed``). Out: ``cmd_vel`` (geometry_msgs/Twist) and
+``trajectory_tracking.reference_speed``). Out: ``cmd_vel`` (geometry_msgs/Twist or, with
+``enable_stamped_cmd_vel`` (Nav2's parameter), geometry_msgs/TwistStamped in ``base_frame_id``
+stamped with the pose it answers, as Jazzy's diff_drive_controller takes it) and
 ``~/tracking_error`` (robotica_msgs/TrackingError, stamped with the pose it was computed from;
 none from a law that follows no path, whose errors are NaN: ``open_loop``).
 With ``command_type`` = ``steering`` (tricycle, bicycle, Ackermann) the command goes out on
@@ -32,7 +34,8 @@ odometry frame at the true pose).
 """
 import math
 
-from geometry_msgs.msg import Point, Twist
+from builtin_interfaces.msg import Time
+from geometry_msgs.msg import Point, Twist, TwistStamped
 from nav_msgs.msg import Odometry, Path
 from rcl_interfaces.msg import SetParametersResult
 from rclpy.experimental import EventsExecutor
@@ -43,7 +46,7 @@ from robotica_kin.parameter_specs import check_parameters, ParameterError
 from robotica_kin.ros.convert import path_points, pose2d_from_odometry, stamp_to_seconds
 from robotica_kin.ros.entry_point import run_node
 from robotica_kin.ros.guarded import GuardedNode
-from robotica_kin.ros.parameters import declare_specs
+from robotica_kin.ros.parameters import declare, declare_specs
 from robotica_kin.ros.qos import (COMMAND_PUB_QOS, INPUT_QOS_OVERRIDES, LATCHED_QOS,
                                   STREAM_PUB_QOS, STREAM_SUB_QOS)
 from robotica_msgs.msg import TrackingError, VehicleCommand
@@ -82,8 +85,15 @@ class PathTrackerNode(GuardedNode):
         self._path_frame = ''
         self._pose_msg = None
         self._reported: set[str] = set()
+        self._stamped = declare(self, 'enable_stamped_cmd_vel', False,
+                                'cmd_vel is geometry_msgs/TwistStamped (in base_frame_id, '
+                                'stamped with its pose), else Twist', read_only=True)
+        self._base_frame = declare(self, 'base_frame_id', 'base_link',
+                                   'Frame of a stamped cmd_vel: the robot body', read_only=True)
+        self._stamp = Time()   # of the pose last answered: a stop answers it again
         if self._command_type == 'twist':
-            self._cmd_pub = self.create_publisher(Twist, 'cmd_vel', COMMAND_PUB_QOS)
+            self._cmd_pub = self.create_publisher(TwistStamped if self._stamped else Twist,
+                                                  'cmd_vel', COMMAND_PUB_QOS)
         else:
             self._cmd_pub = self.create_publisher(VehicleCommand, 'vehicle_command',
                                                   COMMAND_PUB_QOS)
@@ -177,13 +187,20 @@ class PathTrackerNode(GuardedNode):
             twist = Twist()
             twist.linear.x = linear
             twist.angular.z = angular
-            self._cmd_pub.publish(twist)
+            if self._stamped:
+                command = TwistStamped(twist=twist)
+                command.header.stamp = self._stamp
+                command.header.frame_id = self._base_frame
+                self._cmd_pub.publish(command)
+            else:
+                self._cmd_pub.publish(twist)
             return
         self._cmd_pub.publish(VehicleCommand(
             speed=linear, steering_angle=steering_angle(linear, angular, self._wheelbase)))
 
     def _control(self, msg: Odometry) -> None:
         time = stamp_to_seconds(msg.header.stamp)
+        self._stamp = msg.header.stamp
         if self._law is None:
             self._stop('no path received on ~/path yet: holding still')
             return

@@ -6,7 +6,7 @@ so its cross-track error is +0.5 m and pure pursuit turns it right (negative yaw
 """
 import math
 
-from geometry_msgs.msg import PoseStamped, Twist
+from geometry_msgs.msg import PoseStamped, Twist, TwistStamped
 from nav_msgs.msg import Odometry, Path
 import pytest
 from rcl_interfaces.msg import Parameter, ParameterType, ParameterValue
@@ -85,6 +85,50 @@ def test_nan_pose_and_wrong_frame_stop(tracker, publish, read_output):
     assert proc.poll() is None
     text = read_output(proc)
     assert 'pose refused' in text and 'differs from path frame' in text
+
+
+def test_stamped_commands_carry_the_pose_stamp_and_base_link(start_node, ros_node, spin, publish):
+    # enable_stamped_cmd_vel: the same command as a Twist (left of the path: turn right), as a
+    # TwistStamped in base_link stamped with the pose it answers (t = 3.25 s).
+    node, executor = ros_node
+    start_node('robotica_ctrl', 'path_tracker', '-r', '/path_tracker/path:=/path',
+               '-p', 'enable_stamped_cmd_vel:=true')
+    cmds = []
+    node.create_subscription(TwistStamped, 'cmd_vel', cmds.append, QOS)
+    odom = node.create_publisher(Odometry, 'odom', QOS)
+    path = node.create_publisher(Path, '/path', LATCHED)
+    assert spin(executor, lambda: odom.get_subscription_count() > 0 and
+                path.get_subscription_count() > 0 and node.count_publishers('cmd_vel') > 0)
+    [info] = node.get_publishers_info_by_topic('/cmd_vel')
+    assert info.topic_type == 'geometry_msgs/msg/TwistStamped'
+    path.publish(_straight_path())
+    msg = _odom(0.0, 0.5, 0.0)
+    msg.header.stamp.sec, msg.header.stamp.nanosec = 3, 250_000_000
+    assert publish(executor, odom, msg, lambda: cmds and cmds[-1].twist.linear.x != 0.0)
+    assert cmds[-1].header.frame_id == 'base_link'
+    assert (cmds[-1].header.stamp.sec, cmds[-1].header.stamp.nanosec) == (3, 250_000_000)
+    assert cmds[-1].twist.linear.x > 0.0 and cmds[-1].twist.angular.z < 0.0
+
+
+def test_stamped_commands_drive_a_consumer_configured_as_diff_drive_controller(
+        start_node, ros_node, spin):
+    # Jazzy's diff_drive_controller takes TwistStamped in base_link; the simulator configured
+    # so (enable_stamped_cmd_vel, base_frame_id base_link) refuses anything else and brakes.
+    # Tracker and simulator together: the robot, at the start of a straight path along +x,
+    # moves along it.
+    node, executor = ros_node
+    stamped = ('-p', 'enable_stamped_cmd_vel:=true')
+    start_node('robotica_sim', 'simulator', *stamped, '-p', 'base_frame_id:=base_link')
+    start_node('robotica_ctrl', 'path_tracker', *stamped, '-r', '/path_tracker/path:=/path',
+               '-p', 'pose_source:=ground_truth')
+    truth = []
+    node.create_subscription(Odometry, 'ground_truth/odom', truth.append, QOS)
+    path = node.create_publisher(Path, '/path', LATCHED)
+    assert spin(executor, lambda: path.get_subscription_count() > 0)
+    path.publish(_straight_path())
+    assert spin(executor, lambda: truth and truth[-1].pose.pose.position.x > 0.2, timeout=20)
+    assert abs(truth[-1].pose.pose.position.y) < 1e-6
+    assert truth[-1].twist.twist.linear.x > 0.0
 
 
 def test_invalid_gain_is_refused_with_reason(tracker, call):

@@ -25,7 +25,13 @@ speed v and the (equivalent) front steering angle α, as ``robotica_msgs/Vehicle
 
 Every configuration also names its *odometry wheels*: the left and right wheels of the guide
 point's axle (the drive wheels of a differential or skid-steer base, the passive rear wheels of a
-steered one), whose encoders feed the dead reckoning of §4.7.5.
+steered one), whose encoders feed the dead reckoning of §4.7.5. Their joint names,
+:attr:`VehicleKinematics.odometry_wheel_joints`, are the one naming that the simulator's
+``joint_states`` and the vehicle's URDF (:mod:`robotica_kin.urdf`) share: ``left_wheel_joint``
+and ``right_wheel_joint`` where those wheels are wheels of the vehicle, else
+``left_odometry_wheel_joint`` and ``right_odometry_wheel_joint`` (:data:`ODOMETRY_WHEEL_JOINTS`):
+passive measuring wheels at (0, ±b/2) under the guide point (a bicycle has one rear wheel, and
+a mecanum, omnidirectional or synchronous base has none on that axle).
 """
 
 from abc import ABC, abstractmethod
@@ -46,13 +52,16 @@ from robotica_kin.mobile.unicycle import _vector
 from robotica_kin.parameter_specs import ParameterSpec
 from robotica_kin.types import Vector
 
-__all__ = ['GEOMETRY_PARAMETERS', 'POSE_PARAMETERS', 'STEERED_TYPES', 'VEHICLE_TYPES',
-           'VehicleGeometry', 'VehicleKinematics', 'as_command', 'vehicle_kinematics']
+__all__ = ['GEOMETRY_PARAMETERS', 'ODOMETRY_WHEEL_JOINTS', 'POSE_PARAMETERS', 'STEERED_TYPES',
+           'VEHICLE_TYPES', 'VehicleGeometry', 'VehicleKinematics', 'as_command',
+           'vehicle_kinematics']
 
 VEHICLE_TYPES = ('differential', 'synchronous', 'skid_steer', 'omni_three', 'mecanum',
                  'tricycle', 'bicycle', 'ackermann')
 STEERED_TYPES = ('tricycle', 'bicycle', 'ackermann')
 """Types commanded by (v, α) (``VehicleCommand``); the others take a twist (``cmd_vel``)."""
+ODOMETRY_WHEEL_JOINTS = ('left_odometry_wheel_joint', 'right_odometry_wheel_joint')
+"""The odometry wheels' joint names of a vehicle with no wheels of its own on the guide axle."""
 
 
 @dataclass(frozen=True)
@@ -122,6 +131,8 @@ class VehicleKinematics(ABC):
     steering_actuators : tuple of bool
         Which actuators are steering angles (their lag is the steering lag, the others' the
         traction lag).
+    odometry_wheel_joints : tuple of str
+        Joint names (left, right) of the odometry wheels, in ``joint_states`` and in the URDF.
 
     """
 
@@ -129,6 +140,7 @@ class VehicleKinematics(ABC):
     steered = False
     actuator_names: tuple[str, ...]
     steering_actuators: tuple[bool, ...]
+    odometry_wheel_joints: tuple[str, str] = ('left_wheel_joint', 'right_wheel_joint')
 
     def __init__(self, geometry: VehicleGeometry) -> None:
         self.geometry = geometry
@@ -202,6 +214,7 @@ class _Synchronous(VehicleKinematics):
     name = 'synchronous'
     actuator_names = ('drive_speed', 'steering_rate')
     steering_actuators = (False, True)
+    odometry_wheel_joints = ODOMETRY_WHEEL_JOINTS
 
     def actuator_targets(self, command: Vector) -> Vector:
         return np.array([command[0], command[2]])
@@ -218,6 +231,7 @@ class _OmniThree(VehicleKinematics):
     name = 'omni_three'
     actuator_names = ('wheel_0_speed', 'wheel_1_speed', 'wheel_2_speed')
     steering_actuators = (False, False, False)
+    odometry_wheel_joints = ODOMETRY_WHEEL_JOINTS
 
     def __init__(self, geometry: VehicleGeometry) -> None:
         super().__init__(geometry)
@@ -237,6 +251,7 @@ class _Mecanum(VehicleKinematics):
     actuator_names = ('front_left_speed', 'front_right_speed', 'rear_left_speed',
                       'rear_right_speed')
     steering_actuators = (False, False, False, False)
+    odometry_wheel_joints = ODOMETRY_WHEEL_JOINTS
 
     def __init__(self, geometry: VehicleGeometry) -> None:
         super().__init__(geometry)
@@ -259,6 +274,7 @@ class _Bicycle(VehicleKinematics):
     steered = True
     actuator_names = ('speed', 'steering_angle')
     steering_actuators = (False, True)
+    odometry_wheel_joints = ODOMETRY_WHEEL_JOINTS   # one rear wheel, at the guide point
 
     def actuator_targets(self, command: Vector) -> Vector:
         limit = self.geometry.max_steering_angle
@@ -276,12 +292,14 @@ class _Tricycle(_Bicycle):
     """The classic tricycle (4.115)-(4.118): the front wheel drives at v_t = v / cos α."""
 
     name = 'tricycle'
+    odometry_wheel_joints = VehicleKinematics.odometry_wheel_joints
 
 
 class _Ackermann(_Bicycle):
     """Ackermann steering: the bicycle model of the equivalent angle, with both front angles."""
 
     name = 'ackermann'
+    odometry_wheel_joints = VehicleKinematics.odometry_wheel_joints
 
     def __init__(self, geometry: VehicleGeometry) -> None:
         super().__init__(geometry)

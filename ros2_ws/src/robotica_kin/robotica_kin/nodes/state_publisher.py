@@ -36,24 +36,18 @@ from geometry_msgs.msg import TransformStamped
 import numpy as np
 from numpy.typing import NDArray
 import pinocchio as pin
-from rclpy.qos import QoSProfile, ReliabilityPolicy
 from robotica_kin.bounds import bounded, MAX_JOINT_POSITION, StampGate
 from robotica_kin.ros.convert import joint_state_values, stamp_to_seconds
 from robotica_kin.ros.dh_messages import declare_robot
 from robotica_kin.ros.entry_point import run_node
 from robotica_kin.ros.guarded import GuardedNode
 from robotica_kin.ros.parameters import declare, declare_specs
-from robotica_kin.ros.qos import LATCHED_QOS, STREAM_SUB_QOS
+from robotica_kin.ros.qos import LATCHED_QOS, STREAM_SUB_QOS, TF_QOS
 from robotica_kin.urdf import robot_description, ROBOT_DESCRIPTION_PARAMETERS
 from robotica_kin.urdf_kinematics import LinkTransform, URDFKinematics
 from sensor_msgs.msg import JointState
 from std_msgs.msg import String
 from tf2_msgs.msg import TFMessage
-
-TF_QOS = QoSProfile(depth=100, reliability=ReliabilityPolicy.RELIABLE)
-"""tf2_ros's ``DynamicBroadcasterQoS``: reliable, volatile, keep-last 100."""
-TF_STATIC_QOS = LATCHED_QOS
-"""tf2_ros's ``StaticBroadcasterQoS``: reliable, transient local, keep-last 1."""
 
 
 def _frames(links: Iterable[LinkTransform], prefix: str) -> list[TransformStamped]:
@@ -95,7 +89,7 @@ class StatePublisherNode(GuardedNode):
         self._q = np.zeros(len(names))
         self._stamps = StampGate()   # of the joint states
         self._tf_pub = self.create_publisher(TFMessage, '/tf', TF_QOS)
-        static = self.create_publisher(TFMessage, '/tf_static', TF_STATIC_QOS)
+        static = self.create_publisher(TFMessage, '/tf_static', LATCHED_QOS)
         description = self.create_publisher(String, 'robot_description', LATCHED_QOS)
         description.publish(String(data=urdf))
         now = self.get_clock().now().to_msg()

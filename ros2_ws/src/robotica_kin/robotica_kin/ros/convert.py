@@ -9,7 +9,7 @@ import math
 from typing import Sequence
 
 from builtin_interfaces.msg import Duration, Time
-from geometry_msgs.msg import PoseStamped, Quaternion
+from geometry_msgs.msg import PoseStamped, Quaternion, TransformStamped
 from nav_msgs.msg import Odometry, Path
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -151,6 +151,27 @@ def odometry_message(t: float, frame_id: str, child_frame_id: str, pose: ArrayLi
     msg.twist.twist.linear.x = float(twist[0])
     msg.twist.twist.linear.y = float(twist[1]) if len(twist) == 3 else 0.0
     msg.twist.twist.angular.z = float(twist[-1])
+    return msg
+
+
+def planar_transform(t: float, frame_id: str, child_frame_id: str,
+                     pose: ArrayLike) -> TransformStamped:
+    """
+    Build the ``TransformStamped`` ``frame_id`` -> ``child_frame_id`` of a planar pose.
+
+    ``pose`` is (x [m], y [m], theta [rad]) of the child frame in ``frame_id``; stamp ``t`` [s].
+
+    >>> msg = planar_transform(1.5, 'odom', 'base_link', [1.0, 2.0, math.pi])
+    >>> msg.header.stamp.sec, msg.transform.translation.y, msg.transform.rotation.z
+    (1, 2.0, 1.0)
+    """
+    x, y, theta = (float(v) for v in np.asarray(pose, dtype=float))
+    msg = TransformStamped(child_frame_id=child_frame_id)
+    msg.header.stamp = seconds_to_stamp(t)
+    msg.header.frame_id = frame_id
+    msg.transform.translation.x = x
+    msg.transform.translation.y = y
+    msg.transform.rotation = yaw_to_quaternion(theta)
     return msg
 
 

@@ -31,6 +31,12 @@ QoS profiles by role, shared by every robotica node (STYLE.md §5, "QoS by role"
   loses none: with keep-last 1 on the writer a reliable sample not yet acknowledged by the
   recorder is overwritten by the next one.
 * Latched data (paths, models) are RELIABLE, TRANSIENT_LOCAL, keep-last 1 on both ends.
+* Transforms: ``/tf_static`` with ``LATCHED_QOS`` (tf2_ros's ``StaticBroadcasterQoS``);
+  ``/tf`` with ``TF_QOS``, a stream's profile: reliable as tf2_ros's ``DynamicBroadcasterQoS``,
+  but TRANSIENT_LOCAL with ``STREAM_HISTORY`` messages instead of volatile keep-last 100, so that
+  a recorder that falls behind or is matched late still gets every transform of a run (with
+  keep-last 100 a demo bag lost 80 of the state publisher's 1601). A tf2 listener (reliable,
+  volatile) is matched as before.
 """
 from rclpy.qos import DurabilityPolicy, QoSPolicyKind, QoSProfile, ReliabilityPolicy
 from rclpy.qos_overriding_options import QoSOverridingOptions
@@ -47,6 +53,7 @@ COMMAND_QOS = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE)
 COMMAND_PUB_QOS = QoSProfile(depth=STREAM_HISTORY, reliability=ReliabilityPolicy.RELIABLE)
 LATCHED_QOS = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,
                          durability=DurabilityPolicy.TRANSIENT_LOCAL)
+TF_QOS = STREAM_PUB_QOS
 INPUT_QOS_OVERRIDES = QoSOverridingOptions(policy_kinds=(
     QoSPolicyKind.RELIABILITY, QoSPolicyKind.DURABILITY, QoSPolicyKind.HISTORY,
     QoSPolicyKind.DEPTH))

@@ -30,6 +30,20 @@ before a gyro publisher is matched, and each later one waits for the gyro sample
 Publishes ``odom`` (nav_msgs/Odometry: pose in ``odom_frame_id``, twist in ``base_frame_id``,
 REP-105, pose covariance of x, y and yaw) at each encoder reading.
 
+With ``publish_tf`` (as robot_localization and diff_drive_controller name it) it also publishes,
+stamped with the reading's time, the REP-105 transforms (docs/nodes.md has the tree):
+
+* without an absolute measurement (no GPS, no compass) ``odom_frame_id`` -> ``base_frame_id``
+  is the estimate, and ``map_frame_id`` -> ``odom_frame_id`` the identity, once on
+  ``/tf_static``: the estimate starts at the true pose, so odom and map coincide at the start;
+* with GPS or compass fusion, as robot_localization's two-filter setup: ``odom`` ->
+  ``base_link`` is the dead reckoning alone (the estimate's own increments, continuous, never
+  jumping at a fix), and ``map`` -> ``odom`` = (map -> base_link, the fused estimate) x
+  inverse(odom -> base_link), on ``/tf`` with each reading; so ``map`` -> ``base_link`` through
+  the tree is the fused estimate, while ``odom`` keeps the smooth pose a local planner needs.
+
+No ``map`` -> ``odom`` is published when ``map_frame_id`` equals ``odom_frame_id``.
+
 The estimator is :class:`robotica_kin.mobile.odometry_fusion.OdometryFusion`; this node declares
 its parameters, converts the messages to numbers (the fix to ENU), passes them in, logs what it
 reports and publishes each estimate.
@@ -43,19 +57,39 @@ from robotica_kin.bounds import (bounded, MAX_ANGULAR_RATE, MAX_LATITUDE, MAX_LO
                                  MAX_TIME_JUMP)
 from robotica_kin.geodetic import GeodeticOrigin
 from robotica_kin.mobile.ekf_localization import OdometryNoise
-from robotica_kin.mobile.odometry import ODOMETRY_METHODS
+from robotica_kin.mobile.odometry import odometry_increment, ODOMETRY_METHODS
 from robotica_kin.mobile.odometry_fusion import (FusionEvent, HEADING_SOURCES, OdometryEstimate,
                                                  OdometryFusion, OdometryFusionParams)
-from robotica_kin.ros.convert import odometry_message, quaternion_to_yaw, stamp_to_seconds
+from robotica_kin.ros.convert import (odometry_message, planar_transform, quaternion_to_yaw,
+                                      stamp_to_seconds)
 from robotica_kin.ros.entry_point import run_node
 from robotica_kin.ros.guarded import GuardedNode
 from robotica_kin.ros.parameters import declare
-from robotica_kin.ros.qos import (INPUT_QOS_OVERRIDES, STREAM_PUB_QOS, STREAM_REPLAY_SUB_QOS,
-                                  STREAM_SUB_QOS)
+from robotica_kin.ros.qos import (INPUT_QOS_OVERRIDES, LATCHED_QOS, STREAM_PUB_QOS,
+                                  STREAM_REPLAY_SUB_QOS, STREAM_SUB_QOS, TF_QOS)
 from robotica_msgs.msg import WheelEncoders
 from sensor_msgs.msg import Imu, NavSatFix, NavSatStatus
+from tf2_msgs.msg import TFMessage
 
 SENSOR_NAMES = {'position': 'GPS fix', 'heading': 'compass heading'}   # in the log
+
+
+def _se2(pose) -> np.ndarray:
+    """Return the homogeneous (3, 3) matrix of a planar pose (x [m], y [m], theta [rad])."""
+    x, y, theta = pose
+    c, s = math.cos(theta), math.sin(theta)
+    return np.array([[c, -s, x], [s, c, y], [0.0, 0.0, 1.0]])
+
+
+def map_to_odom(fused, dead_reckoning) -> tuple[float, float, float]:
+    """
+    Return map -> odom (x, y, theta) = map -> base_link (fused) x inverse(odom -> base_link).
+
+    >>> [round(v, 12) for v in map_to_odom((1.0, 1.0, math.pi / 2), (1.0, 0.0, 0.0))]
+    [1.0, 0.0, 1.570796326795]
+    """
+    T = _se2(fused) @ np.linalg.inv(_se2(dead_reckoning))
+    return float(T[0, 2]), float(T[1, 2]), math.atan2(T[1, 0], T[0, 0])
 
 
 class OdometryNode(GuardedNode):
@@ -115,6 +149,12 @@ class OdometryNode(GuardedNode):
                                    read_only=True)
         self._base_frame = declare(self, 'base_frame_id', 'base_link', 'Frame of the robot',
                                    read_only=True)
+        self._map_frame = declare(self, 'map_frame_id', 'map',
+                                  'Frame of the map (REP-105): parent of odom_frame_id on /tf',
+                                  read_only=True)
+        self._publish_tf = declare(self, 'publish_tf', True,
+                                   'Publish odom -> base_link and map -> odom (REP-105)',
+                                   read_only=True)
         self._max_rejections = declare(
             self, 'gate.max_rejections', 10, 'Consecutive rejections of one sensor after which '
             'the covariance is inflated by its innovation and the measurement applied',
@@ -128,6 +168,17 @@ class OdometryNode(GuardedNode):
                 wait_for_compass=self._fuse_compass, max_rejections=self._max_rejections),
             pose, np.diag([sigma0[0] ** 2, sigma0[0] ** 2, sigma0[1] ** 2]))
         self._pub = self.create_publisher(Odometry, 'odom', STREAM_PUB_QOS)
+        # Dead reckoning alone (odom -> base_link) when an absolute measurement moves the estimate.
+        self._absolute = self._fuse_gps or self._fuse_compass
+        self._dead_reckoning = (np.array(pose, dtype=float), None)   # (pose, time [s])
+        self._integration = (method, track)
+        self._tf_pub = None
+        if self._publish_tf:
+            self._tf_pub = self.create_publisher(TFMessage, '/tf', TF_QOS)
+            if not self._absolute and self._map_frame != self._odom_frame:
+                self._tf_static = self.create_publisher(TFMessage, '/tf_static', LATCHED_QOS)
+                self._tf_static.publish(TFMessage(transforms=[planar_transform(
+                    0.0, self._map_frame, self._odom_frame, (0.0, 0.0, 0.0))]))
         overrides = INPUT_QOS_OVERRIDES
         self.create_subscription(WheelEncoders, 'wheel_encoders', self._on_ticks, STREAM_SUB_QOS,
                                  qos_overriding_options=overrides)
@@ -259,6 +310,28 @@ class OdometryNode(GuardedNode):
         covariance[np.ix_(index, index)] = estimate.covariance
         out.pose.covariance = [float(v) for v in covariance.ravel()]
         self._pub.publish(out)
+        if self._tf_pub is not None:
+            self._publish_tf_frames(estimate)
+
+    def _publish_tf_frames(self, estimate: OdometryEstimate) -> None:
+        """Publish odom -> base_link (and map -> odom when fusing) at the estimate's time."""
+        if not self._absolute:
+            self._tf_pub.publish(TFMessage(transforms=[planar_transform(
+                estimate.t, self._odom_frame, self._base_frame, estimate.pose)]))
+            return
+        pose, t = self._dead_reckoning
+        if t is not None and estimate.t > t:   # the estimate's increment, without corrections
+            method, track = self._integration
+            dt = estimate.t - t
+            v, omega = estimate.twist
+            pose = odometry_increment(pose, (v - 0.5 * omega * track) * dt,
+                                      (v + 0.5 * omega * track) * dt, track, method)
+        self._dead_reckoning = (pose, estimate.t if t is None else max(t, estimate.t))
+        transforms = [planar_transform(estimate.t, self._odom_frame, self._base_frame, pose)]
+        if self._map_frame != self._odom_frame:
+            transforms.append(planar_transform(estimate.t, self._map_frame, self._odom_frame,
+                                               map_to_odom(estimate.pose, pose)))
+        self._tf_pub.publish(TFMessage(transforms=transforms))
 
 
 def main(args=None) -> None:

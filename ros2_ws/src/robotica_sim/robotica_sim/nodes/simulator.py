@@ -3,32 +3,40 @@ Simulator node: any wheeled vehicle of the book integrated at a fixed step; it o
 
 The configuration is the parameter ``vehicle.type`` (one of
 :data:`robotica_kin.mobile.vehicles.VEHICLE_TYPES`). Twist-driven vehicles (differential,
-synchronous, skid steer, omnidirectional, mecanum) subscribe ``cmd_vel`` (geometry_msgs/Twist);
+synchronous, skid steer, omnidirectional, mecanum) subscribe ``cmd_vel``: geometry_msgs/Twist,
+or with ``enable_stamped_cmd_vel`` (Nav2's name; Jazzy's diff_drive_controller takes only the
+stamped one) geometry_msgs/TwistStamped, whose ``header.frame_id`` must be ``base_frame_id``;
 steered ones (tricycle, bicycle, Ackermann) subscribe ``vehicle_command``
 (robotica_msgs/VehicleCommand: guide-point speed and steering angle). Publishes ``/clock``, the
 ground truth ``ground_truth/odom`` (nav_msgs/Odometry, pose in ``world_frame_id``, twist in
-``base_frame_id``), the odometry wheels' angles and rates and the steering angles on
-``joint_states`` (for the encoder emulator) and ``~/status`` (robotica_msgs/SimulatorStatus).
+``base_frame_id``), the same pose as the transform ``world_frame_id`` -> ``truth_frame_id`` on
+``/tf`` (so that a viewer shows the truth beside the estimate's ``base_link``; '': none), the
+odometry wheels' angles and rates and the steering angles on ``joint_states`` (for the encoder
+emulator and the state publisher: the joint names of the vehicle's URDF,
+``VehicleKinematics.odometry_wheel_joints``), each stamped with the sim time of its step, and
+``~/status`` (robotica_msgs/SimulatorStatus).
 Service ``~/start`` (std_srvs/Trigger) starts the run when ``autostart`` is false. Pacing
 (``realtime`` or ``lockstep``) and the end of the run are those of
 :class:`~robotica_sim.nodes.stepped_simulator.SteppedSimulatorNode`. A command older than
 ``cmd_timeout`` stops the vehicle, and the node logs it; a command that is not finite or beyond
-the physical bounds (:mod:`robotica_kin.bounds`) is refused, logged, and stops it at once.
+the physical bounds (:mod:`robotica_kin.bounds`), or a TwistStamped in another frame, is refused,
+logged, and stops it at once.
 """
 import math
 
-from geometry_msgs.msg import Twist
+from geometry_msgs.msg import Twist, TwistStamped
 from nav_msgs.msg import Odometry
 from rclpy.experimental import EventsExecutor
 from robotica_kin.mobile.vehicles import STEERED_TYPES
-from robotica_kin.ros.convert import odometry_message, seconds_to_stamp
+from robotica_kin.ros.convert import odometry_message, planar_transform, seconds_to_stamp
 from robotica_kin.ros.entry_point import run_node
 from robotica_kin.ros.parameters import declare, declare_specs
-from robotica_kin.ros.qos import COMMAND_QOS, STREAM_PUB_QOS
+from robotica_kin.ros.qos import COMMAND_QOS, STREAM_PUB_QOS, TF_QOS
 from robotica_msgs.msg import VehicleCommand
 from robotica_sim.nodes.stepped_simulator import SteppedSimulatorNode
 from robotica_sim.simulation.vehicle import SIMULATOR_PARAMETERS, vehicle_simulation
 from sensor_msgs.msg import JointState
+from tf2_msgs.msg import TFMessage
 
 
 class SimulatorNode(SteppedSimulatorNode):
@@ -46,16 +54,23 @@ class SimulatorNode(SteppedSimulatorNode):
                                     'Frame of the ground-truth pose', read_only=True)
         self._base_frame = declare(self, 'base_frame_id', 'base_link',
                                    'Frame of the robot body', read_only=True)
-        self._wheel_joints = [
-            declare(self, 'left_wheel_joint', 'left_wheel_joint',
-                    'Left odometry wheel joint name (drive or rear axle)', read_only=True),
-            declare(self, 'right_wheel_joint', 'right_wheel_joint',
-                    'Right odometry wheel joint name (drive or rear axle)', read_only=True)]
+        self._truth_frame = declare(self, 'truth_frame_id', 'base_link_truth',
+                                    'Frame of the true pose on /tf, child of world_frame_id; '
+                                    "'': not published", read_only=True)
+        stamped = declare(self, 'enable_stamped_cmd_vel', False,
+                          'cmd_vel is geometry_msgs/TwistStamped (in base_frame_id), else Twist',
+                          read_only=True)
+        self._wheel_joints = list(self._sim.kinematics.odometry_wheel_joints)
         self._truth_pub = self.create_publisher(Odometry, 'ground_truth/odom', STREAM_PUB_QOS)
+        self._tf_pub = (self.create_publisher(TFMessage, '/tf', TF_QOS) if self._truth_frame
+                        else None)
         self._joints_pub = self.create_publisher(JointState, 'joint_states', STREAM_PUB_QOS,
                                                  allow_nan=('velocity',))
         if self._steered:
             self.create_subscription(VehicleCommand, 'vehicle_command', self._on_vehicle_command,
+                                     COMMAND_QOS)
+        elif stamped:
+            self.create_subscription(TwistStamped, 'cmd_vel', self._on_cmd_vel_stamped,
                                      COMMAND_QOS)
         else:
             self.create_subscription(Twist, 'cmd_vel', self._on_cmd_vel, COMMAND_QOS)
@@ -74,6 +89,12 @@ class SimulatorNode(SteppedSimulatorNode):
 
     def _on_cmd_vel(self, msg: Twist) -> None:
         self._take((msg.linear.x, msg.linear.y, msg.angular.z))
+
+    def _on_cmd_vel_stamped(self, msg: TwistStamped) -> None:
+        if msg.header.frame_id != self._base_frame:   # refused: the guard brakes
+            raise ValueError(f'TwistStamped in frame {msg.header.frame_id[:100]!r}, not '
+                             f'{self._base_frame!r}')
+        self._on_cmd_vel(msg.twist)
 
     def _on_vehicle_command(self, msg: VehicleCommand) -> None:
         self._take((msg.speed, msg.steering_angle, 0.0))
@@ -94,6 +115,9 @@ class SimulatorNode(SteppedSimulatorNode):
         self._joints_pub.publish(joints)
         self._truth_pub.publish(odometry_message(t, self._world_frame, self._base_frame,
                                                  self._sim.pose, self._sim.twist))
+        if self._tf_pub is not None:
+            self._tf_pub.publish(TFMessage(transforms=[planar_transform(
+                t, self._world_frame, self._truth_frame, self._sim.pose)]))
 
     def step_plant(self) -> None:
         """Advance the vehicle one step; stop it (and log the change) when the command is stale."""

@@ -27,7 +27,8 @@ from robotica_sim.runs.plan import (ARM_RECORDED_TOPICS, CONTROLLER_STATE_TOPIC,
 from rosbags.highlevel import AnyReader
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import Imu, JointState, MagneticField, NavSatFix
-from std_msgs.msg import Float64MultiArray
+from std_msgs.msg import Float64MultiArray, String
+from tf2_msgs.msg import TFMessage
 from trajectory_msgs.msg import JointTrajectory
 from visualization_msgs.msg import MarkerArray
 
@@ -223,7 +224,8 @@ RECORDED = {'/clock': Clock, '/cmd_vel': Twist, '/vehicle_command': VehicleComma
             STATUS_TOPIC: SimulatorStatus, '/rosout': Log, '/imu/data': Imu,
             '/compass/heading': Imu, '/compass/magnetic_field': MagneticField,
             '/gps/fix': NavSatFix, '/joint_torques': Float64MultiArray,
-            CONTROLLER_STATE_TOPIC: JointControllerState, TRAJECTORY_TOPIC: JointTrajectory}
+            CONTROLLER_STATE_TOPIC: JointControllerState, TRAJECTORY_TOPIC: JointTrajectory,
+            '/tf': TFMessage, '/tf_static': TFMessage, '/robot_description': String}
 
 
 def _default(msg_type):

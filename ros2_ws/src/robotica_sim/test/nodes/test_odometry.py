@@ -11,9 +11,10 @@ import math
 from nav_msgs.msg import Odometry
 import pytest
 from rclpy.qos import DurabilityPolicy, qos_profile_sensor_data, QoSProfile, ReliabilityPolicy
-from robotica_kin.ros.qos import STREAM_PUB_QOS
+from robotica_kin.ros.qos import LATCHED_QOS, STREAM_PUB_QOS
 from robotica_msgs.msg import WheelEncoders
 from sensor_msgs.msg import Imu, NavSatFix
+from tf2_msgs.msg import TFMessage
 
 pytestmark = pytest.mark.ros
 QOS = QoSProfile(depth=100, reliability=ReliabilityPolicy.RELIABLE)
@@ -32,13 +33,20 @@ def ready(node, executor, spin, *publishers):
     spin(executor, lambda: False, timeout=1.0)
 
 
-def test_straight_line_dead_reckoning_and_its_covariance(start_node, ros_node, spin):
+def started(start_node, ros_node, spin, *arguments):
+    """Start an odometry; return its received odom messages and an encoder publisher."""
     node, executor = ros_node
-    start_node('robotica_sim', 'odometry', '-p', 'odometry_noise.k_distance:=0.002')
+    start_node('robotica_sim', 'odometry', *arguments)
     odom = []
     node.create_subscription(Odometry, 'odom', odom.append, QOS)
     pub = node.create_publisher(WheelEncoders, 'wheel_encoders', QOS)
     ready(node, executor, spin, pub)
+    return odom, pub
+
+
+def test_straight_line_dead_reckoning_and_its_covariance(start_node, ros_node, spin):
+    node, executor = ros_node
+    odom, pub = started(start_node, ros_node, spin, '-p', 'odometry_noise.k_distance:=0.002')
     for k in range(11):
         pub.publish(ticks(0.1 * k, 100 * k, 100 * k))
         spin(executor, lambda: False, timeout=0.02)
@@ -175,6 +183,76 @@ def test_gps_fix_pulls_the_estimate(start_node, ros_node, spin):
     x = odom[-1].pose.pose.position.x
     assert x == pytest.approx(1.0, abs=1e-6)                 # P / (P + R) = 1/2 of 2 m
     assert odom[-1].pose.covariance[0] == pytest.approx(0.5, abs=1e-9)
+
+
+def transforms(messages):
+    """Return {(parent, child): [(stamp [s], x, y, yaw), ...]} of received TF messages."""
+    out = {}
+    for msg in messages:
+        for tf in msg.transforms:
+            stamp = tf.header.stamp.sec + tf.header.stamp.nanosec * 1e-9
+            q, p = tf.transform.rotation, tf.transform.translation
+            out.setdefault((tf.header.frame_id, tf.child_frame_id), []).append(
+                (stamp, p.x, p.y, 2.0 * math.atan2(q.z, q.w)))
+    return out
+
+
+def test_dead_reckoning_is_odom_to_base_link_on_tf(start_node, ros_node, spin):
+    # REP-105 without an absolute sensor: odom -> base_link is the estimate, stamped with the
+    # reading's time; map -> odom is the identity, latched on /tf_static.
+    node, executor = ros_node
+    tf, static = [], []
+    node.create_subscription(TFMessage, '/tf', tf.append, QOS)
+    node.create_subscription(TFMessage, '/tf_static', static.append, LATCHED_QOS)
+    _, pub = started(start_node, ros_node, spin)
+    for k in range(6):
+        pub.publish(ticks(0.1 * k, 100 * k, 100 * k))
+        spin(executor, lambda: False, timeout=0.02)
+    assert spin(executor, lambda: len(transforms(tf).get(('odom', 'base_link'), [])) >= 6
+                and static)
+    stamp, x, y, yaw = transforms(tf)[('odom', 'base_link')][-1]
+    assert stamp == pytest.approx(0.5, abs=1e-9)
+    assert (x, y, yaw) == pytest.approx((500 * METRES_PER_TICK, 0.0, 0.0), abs=1e-9)
+    assert transforms(static) == {('map', 'odom'): [(0.0, 0.0, 0.0, 0.0)]}
+    assert set(transforms(tf)) == {('odom', 'base_link')}
+
+
+def test_gps_fusion_publishes_map_to_odom_as_two_filters_do(start_node, ros_node, spin):
+    # A fix 2 m east (R = 1 m², P = 1 m²) pulls the fused estimate to x = 1 m at t = 0; then
+    # 5 readings of 100 counts straight ahead. Dead reckoning alone (odom -> base_link) never
+    # saw the fix: x = 500 counts; map -> odom carries the correction, 1 m, so that
+    # map -> odom -> base_link is the fused estimate (1 m + 500 counts).
+    node, executor = ros_node
+    start_node('robotica_sim', 'odometry', '-p', 'fuse_gps:=true',
+               '-p', 'initial_stddev.position:=1.0', '-p', 'origin.latitude:=0.0',
+               '-p', 'origin.longitude:=0.0', '-p', 'origin.altitude:=0.0')
+    odom, tf = [], []
+    node.create_subscription(Odometry, 'odom', odom.append, QOS)
+    node.create_subscription(TFMessage, '/tf', tf.append, QOS)
+    enc = node.create_publisher(WheelEncoders, 'wheel_encoders', QOS)
+    gps = node.create_publisher(NavSatFix, 'gps/fix', STREAM_PUB_QOS)
+    ready(node, executor, spin, enc, gps)
+    gps.publish(NavSatFix(latitude=0.0, longitude=math.degrees(2.0 / 6378137.0), altitude=0.0,
+                          position_covariance=[1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0],
+                          position_covariance_type=NavSatFix.COVARIANCE_TYPE_KNOWN))
+    spin(executor, lambda: False, timeout=0.5)
+    for k in range(6):
+        enc.publish(ticks(0.1 * k, 100 * k, 100 * k))
+        spin(executor, lambda: False, timeout=0.02)
+    assert spin(executor, lambda: len(transforms(tf).get(('map', 'odom'), [])) >= 6)
+    travel = 500 * METRES_PER_TICK
+    assert odom[-1].pose.pose.position.x == pytest.approx(1.0 + travel, abs=1e-6)
+    frames = transforms(tf)
+    assert frames[('odom', 'base_link')][-1] == pytest.approx((0.5, travel, 0.0, 0.0), abs=1e-9)
+    assert frames[('map', 'odom')][-1] == pytest.approx((0.5, 1.0, 0.0, 0.0), abs=1e-6)
+
+
+def test_publish_tf_false_publishes_no_transforms(start_node, ros_node, spin):
+    node, executor = ros_node
+    odom, pub = started(start_node, ros_node, spin, '-p', 'publish_tf:=false')
+    pub.publish(ticks(0.0, 0, 0))
+    assert spin(executor, lambda: odom)
+    assert node.count_publishers('/tf') == node.count_publishers('/tf_static') == 0
 
 
 def test_bad_heading_source_is_refused(start_node, read_output):

@@ -6,12 +6,17 @@ along +x (REP-103); once no command arrives for cmd_timeout, the ground-truth tw
 """
 import math
 
-from geometry_msgs.msg import Twist
+from xml.etree import ElementTree
+
+from geometry_msgs.msg import Twist, TwistStamped
 from nav_msgs.msg import Odometry
 import pytest
 from rclpy.qos import QoSProfile, ReliabilityPolicy
+from robotica_kin.urdf import vehicle_urdf
 from robotica_msgs.msg import VehicleCommand
 from rosgraph_msgs.msg import Clock
+from sensor_msgs.msg import JointState
+from tf2_msgs.msg import TFMessage
 
 pytestmark = pytest.mark.ros
 QOS = QoSProfile(depth=10, reliability=ReliabilityPolicy.RELIABLE)
@@ -59,6 +64,71 @@ def test_nan_command_brakes(start_node, ros_node, spin, read_output):
     assert math.isfinite(truth[-1].pose.pose.position.x)
     assert proc.poll() is None
     assert 'cmd_vel: ValueError' in read_output(proc)
+
+
+def stamped(x, frame_id='base_link'):
+    msg = TwistStamped()
+    msg.header.frame_id = frame_id
+    msg.twist.linear.x = x
+    return msg
+
+
+def test_stamped_commands_drive_and_bad_ones_brake(start_node, ros_node, spin, read_output):
+    # enable_stamped_cmd_vel: TwistStamped in base_link drives (0.5 m/s along +x); one in
+    # another frame or with a NaN is refused as a bad Twist is: one log line, a brake.
+    node, executor = ros_node
+    proc = start_node('robotica_sim', 'simulator', '-p', 'enable_stamped_cmd_vel:=true')
+    truth = []
+    node.create_subscription(Odometry, 'ground_truth/odom', truth.append, QOS)
+    cmd = node.create_publisher(TwistStamped, 'cmd_vel', CMD_QOS)
+    assert spin(executor, lambda: cmd.get_subscription_count() > 0 and truth)
+    for bad in (stamped(0.5, 'odom'), stamped(math.nan)):
+        for _ in range(25):   # > 1 s: the guard logs a source at most once a second
+            cmd.publish(stamped(0.5))
+            spin(executor, lambda: False, timeout=0.05)
+        assert truth[-1].twist.twist.linear.x == pytest.approx(0.5, abs=1e-9)
+        for _ in range(5):
+            cmd.publish(bad)
+            spin(executor, lambda: False, timeout=0.05)
+        assert truth[-1].twist.twist.linear.x == 0.0
+    assert truth[-1].pose.pose.position.x > 0.1
+    assert proc.poll() is None
+    text = read_output(proc)
+    assert "cmd_vel: ValueError: TwistStamped in frame 'odom', not 'base_link'" in text
+    assert text.count('cmd_vel: ValueError') == 2   # one line each: the guard throttles
+
+
+def test_truth_is_a_frame_on_tf_stamped_with_its_step(start_node, ros_node, spin):
+    # map -> base_link_truth is the ground-truth pose of the same step: same stamp, same pose.
+    node, executor = ros_node
+    start_node('robotica_sim', 'simulator', '-p', 'initial_pose.x:=1.5',
+               '-p', 'initial_pose.theta:=0.5')
+    truth, tf = [], []
+    node.create_subscription(Odometry, 'ground_truth/odom', truth.append, QOS)
+    node.create_subscription(TFMessage, '/tf', tf.append, QOS)
+    assert spin(executor, lambda: len(tf) >= 5 and len(truth) >= 5)
+    poses = {(o.header.stamp.sec, o.header.stamp.nanosec): o.pose.pose for o in truth}
+    for msg in tf[-3:]:
+        [transform] = msg.transforms
+        assert (transform.header.frame_id, transform.child_frame_id) == ('map', 'base_link_truth')
+        pose = poses[(transform.header.stamp.sec, transform.header.stamp.nanosec)]
+        assert transform.transform.translation.x == pose.position.x == 1.5
+        assert transform.transform.rotation.z == pose.orientation.z == pytest.approx(
+            math.sin(0.25), abs=1e-15)
+
+
+@pytest.mark.parametrize('vehicle_type', ['bicycle', 'mecanum'])
+def test_joint_states_name_joints_of_the_vehicle_urdf(start_node, ros_node, spin, vehicle_type):
+    # The state publisher draws the wheels turning only if joint_states names URDF joints.
+    node, executor = ros_node
+    start_node('robotica_sim', 'simulator', '-p', f'vehicle.type:={vehicle_type}')
+    joints = []
+    node.create_subscription(JointState, 'joint_states', joints.append, QOS)
+    assert spin(executor, lambda: joints)
+    moving = {j.get('name') for j in ElementTree.fromstring(vehicle_urdf(vehicle_type)).iter(
+        'joint') if j.get('type') != 'fixed'}
+    assert set(joints[-1].name) <= moving
+    assert {'left_odometry_wheel_joint', 'right_odometry_wheel_joint'} <= set(joints[-1].name)
 
 
 def test_unknown_pacing_is_refused(start_node, read_output):

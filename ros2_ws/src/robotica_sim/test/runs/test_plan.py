@@ -13,7 +13,8 @@ from robotica_sim.runs.scenario import load_scenario, PathSpec, Scenario, Scenar
 
 SHIPPED = Path(__file__).resolve().parents[2] / 'scenarios'
 DEMO = SHIPPED / 'demo.yaml'
-START_ORDER = ['path_publisher', 'encoder_emulator', 'odometry', 'path_tracker', 'simulator']
+START_ORDER = ['path_publisher', 'encoder_emulator', 'odometry', 'path_tracker',
+               'state_publisher', 'simulator']
 
 
 def write(tmp_path, text, name='scenario.yaml'):
@@ -43,6 +44,7 @@ def test_nodes_in_start_order(demo_plan):
         ('robotica_sim', 'encoder_emulator'),
         ('robotica_sim', 'odometry'),
         ('robotica_ctrl', 'path_tracker'),
+        ('robotica_kin', 'state_publisher'),
         ('robotica_sim', 'simulator'),
     ]
 
@@ -65,14 +67,18 @@ def test_demo_parameters(demo, demo_plan):
     assert nodes['path_publisher'].parameters['frame_id'] == 'odom'
     assert nodes['encoder_emulator'].parameters == {
         'pulses_per_revolution': 1024, 'decoding': 4, 'gear_ratio': 1.0,
-        'missed_count_probability': 0.0, 'seed': demo.seed * 10 + 1}
+        'missed_count_probability': 0.0, 'seed': demo.seed * 10 + 1,
+        'left_wheel_joint': 'left_wheel_joint', 'right_wheel_joint': 'right_wheel_joint'}
     tracker = nodes['path_tracker'].parameters
     assert tracker == {'law': 'pure_pursuit',
                        'pure_pursuit.lookahead_distance': 0.5,
                        'pure_pursuit.desired_linear_velocity': 0.5,
                        'pure_pursuit.max_angular_velocity': 1.5,
-                       'command_type': 'twist', 'wheelbase': 0.5}
-    assert all(type(v) is float for k, v in tracker.items() if k not in ('law', 'command_type'))
+                       'command_type': 'twist', 'wheelbase': 0.5,
+                       'enable_stamped_cmd_vel': False}
+    assert all(type(v) is float for k, v in tracker.items()
+               if k not in ('law', 'command_type', 'enable_stamped_cmd_vel'))
+    assert simulator['enable_stamped_cmd_vel'] is False   # one value for both ends of cmd_vel
 
 
 def test_parameter_values_are_plain_ros_types(demo_plan):
@@ -235,8 +241,12 @@ def test_open_loop_is_planned_as_any_law(tmp_path):
 def test_ej8_4_plan_wires_the_arm_loop():
     scenario = load_scenario(str(SHIPPED / 'ej8_4.yaml'))
     nodes = by_name(plan_run(scenario))
-    assert list(nodes) == ['joint_trajectory_publisher', 'joint_controller', 'simulator']
+    assert list(nodes) == ['joint_trajectory_publisher', 'joint_controller', 'simulator',
+                           'state_publisher']
     assert nodes['simulator'].executable == 'arm_simulator'
+    # The arm drawn from the plant's DH table: (alpha, a, theta, d, sigma) of the 2R, a = 0, l1.
+    assert nodes['state_publisher'].parameters == {
+        'robot': '', 'dh_table': [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 3.0, 0.0, 0.0, 0.0]}
     plant, controller = nodes['simulator'].parameters, nodes['joint_controller'].parameters
     # The plant is the true arm (2, 1 kg), the controller's model the wrong one (2.1, 0.9 kg).
     assert plant['dyn_table'] == np.ravel(two_link_arm(2.0, 1.0, 3.0, 1.0)[1]).tolist()
@@ -341,6 +351,28 @@ def test_every_sensor_and_a_steered_vehicle(tmp_path):
     topics = recorded_topics(scenario)
     assert '/vehicle_command' in topics and '/cmd_vel' not in topics
     assert {'/imu/data', '/compass/heading', '/compass/magnetic_field', '/gps/fix'} <= set(topics)
+
+
+@pytest.mark.parametrize('vehicle_type, wheels', [
+    ('differential', ['left_wheel_joint', 'right_wheel_joint']),
+    ('mecanum', ['left_odometry_wheel_joint', 'right_odometry_wheel_joint'])])
+def test_every_mobile_run_describes_its_vehicle_and_records_tf(tmp_path, vehicle_type, wheels):
+    # The state publisher draws the simulated vehicle (the simulator's vehicle parameters), and
+    # the encoder emulator reads the wheels under the names the simulator publishes (the URDF's).
+    path = write(tmp_path, f"""\
+        robot: {{type: {vehicle_type}, wheel_radius: 0.15, wheel_separation: 0.6}}
+        path: {{shape: straight_line, start: [0, 0], end: [5, 0]}}
+    """)
+    scenario = load_scenario(path)
+    nodes = by_name(plan_run(scenario))
+    described = nodes['state_publisher'].parameters
+    assert described == {key: value for key, value in nodes['simulator'].parameters.items()
+                         if key.startswith('vehicle.')}
+    assert (described['vehicle.type'], described['vehicle.wheel_radius'],
+            described['vehicle.track']) == (vehicle_type, 0.15, 0.6)
+    encoder = nodes['encoder_emulator'].parameters
+    assert [encoder['left_wheel_joint'], encoder['right_wheel_joint']] == wheels
+    assert {'/tf', '/tf_static', '/robot_description'} <= set(recorded_topics(scenario))
 
 
 def test_the_simulator_follows_the_per_step_outputs_off_its_loop(tmp_path):
