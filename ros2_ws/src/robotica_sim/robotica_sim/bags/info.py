@@ -12,7 +12,8 @@ nodes that ran, :mod:`robotica_sim.bags.run_record`). Times are the bag's receiv
 from dataclasses import dataclass
 from pathlib import Path
 
-from robotica_sim.bags.repair import not_regular, partial_reason, repair_command
+from robotica_sim.bags.repair import (metadata_mismatch, not_regular, partial_reason,
+                                      repair_command)
 from robotica_sim.bags.run_record import custom_data, run_record, RunRecord
 from rosbags.highlevel import AnyReader
 
@@ -70,7 +71,8 @@ def open_bag(path: str | Path) -> AnyReader:
     ------
     BagError
         If ``path`` is not a bag directory, or its metadata or data cannot be read (a
-        truncated file, a missing ``metadata.yaml``, a FIFO or a device in place of a file).
+        truncated file, a missing ``metadata.yaml`` or one that does not describe the data, a
+        FIFO or a device in place of a file).
 
     """
     bag = Path(path)
@@ -86,6 +88,10 @@ def open_bag(path: str | Path) -> AnyReader:
                        'what was recorded')
     if not (bag / 'metadata.yaml').is_file():
         raise BagError(f'{bag}: not a bag directory: no metadata.yaml')
+    mismatch = metadata_mismatch(bag)
+    if mismatch:
+        raise BagError(f'{bag}: metadata.yaml does not describe the data ({mismatch}); move it '
+                       f'away and `{repair_command(bag)}` rebuilds it from the data')
     try:
         reader = AnyReader([bag])
         reader.open()

@@ -28,6 +28,7 @@ import shlex
 import struct
 
 from mcap.exceptions import McapError
+from mcap.reader import make_reader
 from mcap.records import Channel, Header, Message, Metadata, Schema
 from mcap.stream_reader import StreamReader
 from mcap.writer import CompressionType, Writer
@@ -189,6 +190,53 @@ def partial_reason(bag: str | Path) -> str:
     if cut:
         return f'{", ".join(cut)} cut short (no MCAP footer)'
     return ''
+
+
+def metadata_mismatch(bag: str | Path) -> str:
+    """
+    Return how the bag's ``metadata.yaml`` contradicts its MCAP files, or '' when it does not.
+
+    The messages per topic that the files' own summaries count are compared with those
+    ``metadata.yaml`` lists (topics without messages are left out: a channel may be written
+    only with its first message): a ``metadata.yaml`` copied from another bag (every
+    ``robotica run`` names its file ``bag_0.mcap``) would make a reader show that bag's scenario
+    and read only the topics it lists. '' also when there is nothing to compare (a file without
+    a summary, a ``metadata.yaml`` that cannot be parsed: the reader says why).
+    """
+    bag = Path(bag)
+    try:
+        metadata = yaml.safe_load((bag / METADATA_FILE).read_text())
+        information = metadata['rosbag2_bagfile_information']
+        listed: dict[str, int] = {}
+        for entry in information['topics_with_message_count']:
+            name = str(entry['topic_metadata']['name'])
+            listed[name] = listed.get(name, 0) + int(entry['message_count'])
+        names = [str(name) for name in information['relative_file_paths']]
+    except (OSError, KeyError, TypeError, ValueError, AttributeError, UnicodeDecodeError,
+            yaml.YAMLError):
+        return ''
+    held: dict[str, int] = {}
+    for name in names:
+        path = bag / name
+        if path.suffix != '.mcap' or not path.is_file():
+            return ''
+        try:
+            with open(path, 'rb') as stream:
+                summary = make_reader(stream).get_summary()
+        except (OSError, *READ_ERRORS):
+            return ''
+        if summary is None or summary.statistics is None:
+            return ''
+        for channel, count in summary.statistics.channel_message_counts.items():
+            topic = summary.channels[channel].topic
+            held[topic] = held.get(topic, 0) + count
+    differ = [f'{topic}: {listed.get(topic, 0)} listed, {held.get(topic, 0)} held'
+              for topic in sorted(set(listed) | set(held))
+              if listed.get(topic, 0) != held.get(topic, 0)]
+    if not differ:
+        return ''
+    return f'messages per topic {"; ".join(differ[:3])}' + (
+        f'; {len(differ) - 3} more topics differ' if len(differ) > 3 else '')
 
 
 def needs_repair(bag: str | Path) -> bool:

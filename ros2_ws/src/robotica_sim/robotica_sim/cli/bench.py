@@ -48,6 +48,12 @@ EPILOG = """examples:
   robotica bench recorder --rates 20000 --loop-duration 10
 """
 SUITES = ('kin', 'arm', 'mobile', 'tracking', 'recorder')
+# Upper bounds of the sizes: beyond them a benchmark runs for hours (1e7 DDS round trips, a
+# day-long ROS loop) or fills the memory (1e7 batched Jacobians are 2.9 GB), and a typo should
+# not be taken for such a request.
+MAX_COUNT = 100_000
+MAX_BASELINE_IK = 10_000
+MAX_LOOP_DURATION = 600.0   # [s]
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -57,19 +63,20 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         'mobile = the vehicle loop with every sensor and the EKF, '
                         'tracking = the path-tracking laws on three vehicles, '
                         "recorder = the recorder node's throughput")
-    parser.add_argument('--count', type=integer(1, 10**7), default=1000,
+    parser.add_argument('--count', type=integer(1, MAX_COUNT), default=1000,
                         help='kin: random configurations per robot; arm: simulated steps of '
                         'the core and DDS round trips (default 1000; arm: at least 5000 steps '
-                        'are used for the core)')
-    parser.add_argument('--loop-duration', type=real(0.0, 1e5),
+                        f'are used for the core; at most {MAX_COUNT})')
+    parser.add_argument('--loop-duration', type=real(0.0, MAX_LOOP_DURATION),
                         help='arm, mobile: simulated seconds of the full ROS loop; 0 skips it '
                         '(default 5 for arm, 60 for mobile); recorder: seconds per rate '
-                        '(default 5)', default=None)
+                        f'(default 5); at most {MAX_LOOP_DURATION:g}', default=None)
     parser.add_argument('--rates', type=real(0.0, 1e7, low_open=True), nargs='+',
                         default=list(RATES), metavar='RATE',
                         help='recorder: offered rates [messages/s]')
-    parser.add_argument('--baseline-ik-count', type=integer(1, 10**6), default=100,
-                        help='poses given to the slow baseline ikine (default 100)')
+    parser.add_argument('--baseline-ik-count', type=integer(1, MAX_BASELINE_IK), default=100,
+                        help='poses given to the slow baseline ikine (default 100, at most '
+                        f'{MAX_BASELINE_IK})')
     parser.add_argument('--seed', type=integer(0, 2**32 - 1), default=0,
                         help='kin: seed of the configurations; tracking: seed of the sensor '
                         'noise (default 0)')

@@ -141,6 +141,9 @@ def inputs(tmp_path_factory) -> dict:
     _edit_metadata(variant('metadata_wrong_types'), lambda i: i.update(
         topics_with_message_count='x', duration={'nanoseconds': 'long'}))
     _edit_metadata(variant('metadata_lies'), _lie)
+    swapped = variant('metadata_of_another_run', mobile)   # files named alike, as runs' are
+    next(swapped.glob('*.mcap')).rename(swapped / next(found['arm'].glob('*.mcap')).name)
+    shutil.copy(found['arm'] / 'metadata.yaml', swapped / 'metadata.yaml')
     for name, path in (('metadata_dir', 'metadata.yaml'), ('metadata_fifo', 'metadata.yaml'),
                        ('mcap_fifo', mcap), ('mcap_dir', mcap)):
         target = variant(name) / path
@@ -177,6 +180,10 @@ CASES = [
     ('info', 'file', 'info {metadata_malformed}', 1, ['Could not load YAML']),
     ('info', 'file', 'info {metadata_list}', 1, ['cannot read the bag']),
     ('info', 'file', 'info {metadata_wrong_types}', 1, ['cannot read the bag']),
+    ('info', 'file', 'info {metadata_lies}', 1, ['does not describe the data',
+                                                 '/ghost: 99 listed, 0 held']),
+    ('info', 'file', 'info {metadata_of_another_run}', 1, ['does not describe the data',
+                                                           'robotica bag repair']),
     ('info', 'file', 'info {metadata_dir}', 1, ['metadata.yaml not a regular file']),
     ('info', 'file', 'info {metadata_fifo}', 1, ['metadata.yaml not a regular file']),
     ('info', 'file', 'info {mcap_fifo}', 1, ['not a regular file']),
@@ -219,6 +226,7 @@ CASES = [
     ('grade', 'file', 'grade {zero_mcap}', 1, ['partial bag']),
     ('grade', 'file', 'grade {no_message}', 1, ['holds no message']),
     ('grade', 'file', 'grade {other_metadata}', 1, ['missing']),
+    ('grade', 'file', 'grade {metadata_of_another_run}', 1, ['does not describe the data']),
     *[('grade', 'file', f'grade {{mobile}} --rubric {{rubric{number}}}', 2,
        [f'rubric{number}.yaml'])
       for number in range(len(RUBRICS))],
@@ -234,6 +242,7 @@ CASES = [
     ('report', 'file', 'report {mcap_fifo}', 1, ['not a regular file']),
     ('report', 'file', 'report {no_message}', 1, ['holds no message']),
     ('report', 'file', 'report {metadata_malformed}', 1, ['Could not load YAML']),
+    ('report', 'file', 'report {metadata_lies}', 1, ['does not describe the data']),
     ('report', 'output', 'report {mobile} --output ""', 2, ['must not be empty']),
     ('report', 'output', 'report {mobile} --output {fifo}', 2, ['cannot write the report']),
     ('report', 'output', 'report {mobile} --output /dev/full', 2, ['cannot write the report']),
@@ -251,6 +260,9 @@ CASES = [
     ('bench', 'argument', 'bench kin --count ""', 2, ['--count']),
     ('bench', 'argument', 'bench kin --count 1.5', 2, ['--count']),
     ('bench', 'argument', 'bench kin --seed 4294967296', 2, ['--seed']),
+    ('bench', 'argument', 'bench kin --count 10000000', 2, ['--count', '<= 100000']),
+    ('bench', 'argument', 'bench kin --baseline-ik-count 1000000', 2, ['<= 10000']),
+    ('bench', 'argument', 'bench arm --loop-duration 1e5', 2, ['--loop-duration', '<= 600']),
     ('bench', 'argument', 'bench tracking --plots ""', 2, ['must not be empty']),
     ('bench', 'argument', 'bench tracking --laws', 2, ['--laws']),
     ('bench', 'argument', 'bench arm --loop-duration nan', 2, ['--loop-duration']),
@@ -343,9 +355,13 @@ def test_yaml_12_numbers_are_numbers_in_a_rubric_and_a_scenario(capsys, inputs, 
     assert 'must be a finite number' in _assert_one_line(code, lines, 2)
 
 
-def test_counts_are_those_of_the_data_not_of_a_lying_metadata(inputs):
-    run = load_run(inputs['metadata_lies'])
-    assert run.counts == {'/clock': 21, '/path': 1, '/ghost': 0}
+def test_without_another_runs_metadata_the_repair_reads_the_data(capsys, tmp_path, inputs):
+    bag = shutil.copytree(inputs['metadata_of_another_run'], tmp_path / 'bag')
+    (bag / 'metadata.yaml').rename(tmp_path / 'metadata.yaml')
+    assert _run_verb(capsys, ['bag', 'repair', bag])[0] == 0
+    run = load_run(bag)   # the mobile run's data, no longer the arm's scenario (rosbags'
+    assert run.scenario_name is None and run.counts == {   # writer kept none in the file)
+        '/clock': 51, '/ground_truth/odom': 51, '/path': 1}
 
 
 @pytest.mark.parametrize('bag, figure', [('arm_says_mobile', 'joint_positions.png'),
