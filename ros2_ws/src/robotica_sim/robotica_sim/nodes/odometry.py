@@ -58,13 +58,14 @@ from robotica_kin.bounds import (bounded, MAX_ANGULAR_RATE, MAX_LATITUDE, MAX_LO
 from robotica_kin.geodetic import GeodeticOrigin
 from robotica_kin.mobile.ekf_localization import OdometryNoise
 from robotica_kin.mobile.odometry import odometry_increment, ODOMETRY_METHODS
-from robotica_kin.mobile.odometry_fusion import (FusionEvent, HEADING_SOURCES, OdometryEstimate,
+from robotica_kin.mobile.odometry_fusion import (FusionEvent, HEADING_SOURCES,
+                                                 ODOMETRY_PARAMETERS, OdometryEstimate,
                                                  OdometryFusion, OdometryFusionParams)
 from robotica_kin.ros.convert import (odometry_message, planar_transform, quaternion_to_yaw,
                                       stamp_to_seconds)
 from robotica_kin.ros.entry_point import run_node
 from robotica_kin.ros.guarded import GuardedNode
-from robotica_kin.ros.parameters import declare
+from robotica_kin.ros.parameters import declare, declare_specs
 from robotica_kin.ros.qos import (INPUT_QOS_OVERRIDES, LATCHED_QOS, STREAM_PUB_QOS,
                                   STREAM_REPLAY_SUB_QOS, STREAM_SUB_QOS, TF_QOS)
 from robotica_msgs.msg import WheelEncoders
@@ -97,21 +98,15 @@ class OdometryNode(GuardedNode):
 
     def __init__(self) -> None:
         super().__init__('odometry')
-        radius = declare(self, 'wheel_radius', 0.1, 'Nominal wheel radius c [m], book (4.109)',
-                         low=1e-3, high=10.0, read_only=True)
-        track = declare(self, 'wheel_separation', 0.4,
-                        'Nominal track b between the odometry wheels [m], book (4.110)',
-                        low=1e-3, high=100.0, read_only=True)
+        values = declare_specs(self, ODOMETRY_PARAMETERS)   # the ranges the plan checks
+        radius, track = values['wheel_radius'], values['wheel_separation']
         method = declare(self, 'integration_method', 'exact_arc',
                          f'Pose update: one of {ODOMETRY_METHODS} (slides §13.6, book (4.93))',
                          read_only=True)
         heading_source = declare(self, 'heading_source', 'encoders',
                                  f'Heading increments from: one of {HEADING_SOURCES}',
                                  read_only=True)
-        pose = [declare(self, 'initial_pose.' + k, 0.0, d, low=-1e6, high=1e6, read_only=True)
-                for k, d in (('x', 'Initial x [m] in the odom frame'),
-                             ('y', 'Initial y [m] in the odom frame'),
-                             ('theta', 'Initial heading [rad], REP-103'))]
+        pose = [values[f'initial_pose.{k}'] for k in ('x', 'y', 'theta')]   # odom frame
         sigma0 = [declare(self, 'initial_stddev.' + k, 0.0, d, low=0.0, high=1e6,
                           read_only=True)
                   for k, d in (('position', 'Initial position std. dev. [m] per axis'),
@@ -138,13 +133,8 @@ class OdometryNode(GuardedNode):
                                  read_only=True)
         self._fuse_compass = declare(self, 'fuse_compass', False,
                                      'Correct with compass/heading (EKF)', read_only=True)
-        self._origin = GeodeticOrigin(
-            declare(self, 'origin.latitude', 37.41, 'Latitude of the odom origin [deg]',
-                    low=-90.0, high=90.0, read_only=True),
-            declare(self, 'origin.longitude', -6.0, 'Longitude of the odom origin [deg]',
-                    low=-180.0, high=180.0, read_only=True),
-            declare(self, 'origin.altitude', 10.0, 'Height of the origin [m], WGS-84',
-                    low=-1e4, high=1e5, read_only=True))
+        self._origin = GeodeticOrigin(*(values[f'origin.{k}']
+                                        for k in ('latitude', 'longitude', 'altitude')))
         self._odom_frame = declare(self, 'odom_frame_id', 'odom', 'Frame of the pose',
                                    read_only=True)
         self._base_frame = declare(self, 'base_frame_id', 'base_link', 'Frame of the robot',

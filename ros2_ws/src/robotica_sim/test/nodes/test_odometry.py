@@ -261,6 +261,15 @@ def test_bad_heading_source_is_refused(start_node, read_output):
     assert 'heading_source must be one of' in read_output(proc)
 
 
+def test_a_wheel_beyond_the_planned_range_is_refused(start_node, read_output):
+    # The range of robotica_kin.mobile.odometry_fusion.ODOMETRY_PARAMETERS, which the plan
+    # checks too (test/runs/test_plan_node_checks.py: a nominal wheel of 10.8 m).
+    proc = start_node('robotica_sim', 'odometry', '-p', 'wheel_radius:=10.8')
+    assert proc.wait(timeout=30) == 2
+    text = read_output(proc)
+    assert 'wheel_radius' in text and 'Traceback' not in text
+
+
 def test_filter_that_rejects_every_heading_is_reopened(start_node, ros_node, spin,
                                                        read_output):
     # A certain heading of 0 (initial std. dev. 0) against a compass reading 1 rad with a

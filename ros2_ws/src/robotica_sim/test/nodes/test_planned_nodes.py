@@ -18,6 +18,7 @@ import yaml
 pytestmark = pytest.mark.ros
 
 NODE_CLASSES = {
+    'state_publisher': 'robotica_kin.nodes.state_publisher:StatePublisherNode',
     'path_publisher': 'robotica_ctrl.nodes.path_publisher:PathPublisherNode',
     'path_tracker': 'robotica_ctrl.nodes.path_tracker:PathTrackerNode',
     'joint_trajectory_publisher':
