@@ -234,6 +234,41 @@ _JOINT_FIELDS = {
 
 _Columns = dict[str, NDArray[np.float64]]
 
+MAX_VALUE = 1e9
+"""The largest magnitude of a value of a run (a pose [m], an angle [rad], a speed, a joint
+value, a torque [SI]): beyond it, or not finite, the value is corrupt (no robot of the book
+comes near; robotica_kin.bounds caps what nodes take far below it), and a metric or a figure
+of it would overflow or be meaningless. GPS fixes and variances are not checked: a receiver
+without a fix sends NaN, which the figures and metrics handle."""
+
+
+def _corrupt(values: NDArray[np.float64], nan_allowed: bool) -> NDArray[np.bool_]:
+    """Return where ``values`` are beyond :data:`MAX_VALUE` (inf too) or, if not allowed, NaN."""
+    with np.errstate(invalid='ignore'):
+        beyond = np.abs(values) > MAX_VALUE   # NaN compares False
+    return beyond if nan_allowed else beyond | np.isnan(values)
+
+
+def _check_values(path: Path, series: dict[str, 'Series | None'],
+                  path_points: NDArray[np.float64] | None) -> None:
+    """Raise BagError when a series of the run holds a corrupt value (see MAX_VALUE)."""
+    checked: list[tuple[str, NDArray[np.float64], bool]] = []
+    for role, samples in series.items():
+        if samples is None or role == 'gps':
+            continue
+        # Times are not checked (a wall-clock stamp is 1.7e9 s). A joint series pads a
+        # message with fewer joints than the first with NaN.
+        checked += [(TOPICS[role], column, role in _JOINT_FIELDS)
+                    for name, column in samples.columns.items() if not name.startswith('var_')]
+    if path_points is not None:
+        checked.append((TOPICS['path'], path_points, False))
+    for topic, values, nan_allowed in checked:
+        bad = _corrupt(values, nan_allowed)
+        if np.any(bad):
+            raise BagError(f'{path}: {topic} holds values no run can have (e.g. '
+                           f'{values[bad].flat[0]:g}; not finite or beyond +-{MAX_VALUE:g}): '
+                           'it cannot be graded or drawn')
+
 
 def _in_time_order(t: NDArray[np.float64],
                    columns: _Columns) -> tuple[NDArray[np.float64], _Columns]:
@@ -317,7 +352,8 @@ def load_run(bag: str | Path, topics: Iterable[str] | None = None) -> RunSeries:
     ------
     BagError
         If ``bag`` is not a readable bag (see :func:`robotica_sim.bags.info.open_bag`), its
-        data cannot be read or decoded, or it holds no message.
+        data cannot be read or decoded, it holds no message, or a value no run can have
+        (:data:`MAX_VALUE`).
     ValueError
         If ``topics`` names a topic that :func:`load_run` does not know.
 
@@ -379,6 +415,7 @@ def load_run(bag: str | Path, topics: Iterable[str] | None = None) -> RunSeries:
     path_points = path_times = None
     if 'path' in decoded:
         path_points, path_times = _path(decoded['path'])
+    _check_values(path, {**series, **joints}, path_points)
     status = None
     if 'status' in decoded:
         s = decoded['status']

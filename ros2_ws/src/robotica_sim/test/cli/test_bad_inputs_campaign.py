@@ -150,6 +150,9 @@ def inputs(tmp_path_factory) -> dict:
         target.unlink()
         os.mkfifo(target) if name.endswith('fifo') else target.mkdir()
     _set_robot(variant('arm_says_mobile', found['arm']), 'differential')
+    for name, offset in (('truth_inf', float('inf')), ('truth_nan', float('nan')),
+                         ('truth_1e308', 1e308)):   # a user's node published them
+        found[name] = GRADE.write_run(root / name, offset)
     _set_robot(variant('mobile_says_arm', mobile), 'manipulator')
     from rosbags.rosbag2 import StoragePlugin, Writer
     from robotica_sim.bags.typestore import jazzy_typestore
@@ -225,6 +228,9 @@ CASES = [
     ('grade', 'file', 'grade {garbage}', 1, ['cannot read the bag']),
     ('grade', 'file', 'grade {zero_mcap}', 1, ['partial bag']),
     ('grade', 'file', 'grade {no_message}', 1, ['holds no message']),
+    ('grade', 'file', 'grade {truth_inf}', 1, ['/ground_truth/odom holds values no run']),
+    ('grade', 'file', 'grade {truth_nan}', 1, ['/ground_truth/odom holds values no run']),
+    ('grade', 'file', 'grade {truth_1e308}', 1, ['e.g. 1e+308']),
     ('grade', 'file', 'grade {other_metadata}', 1, ['missing']),
     ('grade', 'file', 'grade {metadata_of_another_run}', 1, ['does not describe the data']),
     *[('grade', 'file', f'grade {{mobile}} --rubric {{rubric{number}}}', 2,
@@ -241,6 +247,8 @@ CASES = [
     ('report', 'argument', 'report {mobile} --robot-every ""', 2, ['--robot-every']),
     ('report', 'file', 'report {mcap_fifo}', 1, ['not a regular file']),
     ('report', 'file', 'report {no_message}', 1, ['holds no message']),
+    ('report', 'file', 'report {truth_inf}', 1, ['/ground_truth/odom holds values no run']),
+    ('report', 'file', 'report {truth_1e308}', 1, ['e.g. 1e+308']),
     ('report', 'file', 'report {metadata_malformed}', 1, ['Could not load YAML']),
     ('report', 'file', 'report {metadata_lies}', 1, ['does not describe the data']),
     ('report', 'output', 'report {mobile} --output ""', 2, ['must not be empty']),
