@@ -39,6 +39,9 @@ EPILOG = """examples:
   robotica grade submissions/ --rubric my_rubric.yaml --json grades.json --jobs 4
 """
 
+# Worker processes: each holds 43 MB once NumPy and rosbags are loaded, more with a bag's data
+# (the 1024 allowed before would need 44 GB and more); more than the CPUs grade no faster.
+MAX_JOBS = 64
 # Topics the metrics read (the sensors are left out: only `robotica report` plots them).
 GRADED_TOPICS = tuple(TOPICS[role] for role in (
     'clock', 'path', 'truth', 'odom', 'cmd_vel', 'vehicle_command', 'tracking_error',
@@ -53,8 +56,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help='rubric YAML file, or the name of a shipped rubric')
     parser.add_argument('--json', type=path, default=None, metavar='OUT.json',
                         help="write every bag's metrics and checks as JSON ('-': stdout)")
-    parser.add_argument('--jobs', type=integer(1, 1024), default=os.cpu_count() or 1,
-                        help=f'bags graded in parallel (default: CPUs, {os.cpu_count()})')
+    parser.add_argument('--jobs', type=integer(1, MAX_JOBS), default=os.cpu_count() or 1,
+                        help=f'bags graded in parallel, at most {MAX_JOBS} (default: CPUs, '
+                        f'{os.cpu_count()})')
     parser.add_argument('--quiet', action='store_true', help='no progress lines on stderr')
 
 

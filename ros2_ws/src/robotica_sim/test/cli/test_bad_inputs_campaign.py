@@ -218,6 +218,7 @@ CASES = [
     ('grade', 'argument', 'grade /dev/null', 1, ['not a bag directory']),
     ('grade', 'argument', 'grade {mobile} --jobs ""', 2, ['--jobs']),
     ('grade', 'argument', 'grade {mobile} --jobs 99999999999999999999999', 2, ['--jobs']),
+    ('grade', 'argument', 'grade {mobile} --jobs 1000', 2, ['--jobs', '<= 64']),
     ('grade', 'argument', 'grade {mobile} --rubric ""', 2, ['must not be empty']),
     ('grade', 'argument', 'grade {mobile} --rubric {fifo}', 2, ['no rubric file']),
     ('grade', 'argument', 'grade {mobile} --rubric {loop}', 2, ['no rubric file']),
