@@ -107,12 +107,17 @@ class ProcessSupervisor:
         return '\n'.join(text.splitlines()[-lines:])
 
 
+def local_environment() -> dict:
+    """Return this process's environment with loopback-only discovery unless it sets another."""
+    env = dict(os.environ)
+    env.setdefault('ROS_AUTOMATIC_DISCOVERY_RANGE', 'LOCALHOST')
+    env.pop('ROS_LOCALHOST_ONLY', None)   # deprecated; when set it overrides the range
+    return env
+
+
 def child_environment(domain_id: int) -> dict:
     """Return the environment of the run's processes: loopback-only discovery, its domain."""
-    env = dict(os.environ)
-    env['ROS_AUTOMATIC_DISCOVERY_RANGE'] = env.get('ROS_AUTOMATIC_DISCOVERY_RANGE',
-                                                   'LOCALHOST')
-    env.pop('ROS_LOCALHOST_ONLY', None)
+    env = local_environment()
     env['ROS_DOMAIN_ID'] = str(domain_id)
     env.setdefault('PYTHONUNBUFFERED', '1')
     env.setdefault('RCUTILS_COLORIZED_OUTPUT', '0')
