@@ -36,13 +36,14 @@ from geometry_msgs.msg import TransformStamped
 import numpy as np
 from numpy.typing import NDArray
 import pinocchio as pin
+from rclpy.experimental import EventsExecutor
 from robotica_kin.bounds import bounded, MAX_JOINT_POSITION, StampGate
 from robotica_kin.ros.convert import joint_state_values, stamp_to_seconds
 from robotica_kin.ros.dh_messages import declare_robot
 from robotica_kin.ros.entry_point import run_node
 from robotica_kin.ros.guarded import GuardedNode
 from robotica_kin.ros.parameters import declare, declare_specs
-from robotica_kin.ros.qos import LATCHED_QOS, STREAM_SUB_QOS, TF_QOS
+from robotica_kin.ros.qos import INPUT_QOS_OVERRIDES, LATCHED_QOS, STREAM_SUB_QOS, TF_QOS
 from robotica_kin.urdf import robot_description, ROBOT_DESCRIPTION_PARAMETERS
 from robotica_kin.urdf_kinematics import LinkTransform, URDFKinematics
 from sensor_msgs.msg import JointState
@@ -100,7 +101,7 @@ class StatePublisherNode(GuardedNode):
         # Built once and refilled for each state: a message built anew cost 0.4 ms a state.
         self._tf = TFMessage(transforms=_frames(self._kinematics.moving(self._q), self._prefix))
         self.create_subscription(JointState, 'joint_states', self._on_joint_states,
-                                 STREAM_SUB_QOS)
+                                 STREAM_SUB_QOS, qos_overriding_options=INPUT_QOS_OVERRIDES)
         model = values['vehicle.type'] or arm.name
         self.get_logger().info(f'{model!r}: joints {list(names)}, {len(transforms)} fixed '
                                f'frames on /tf_static')
@@ -124,4 +125,4 @@ class StatePublisherNode(GuardedNode):
 
 def main(args=None) -> None:
     """Run the state publisher until Ctrl-C."""
-    run_node(StatePublisherNode, args)
+    run_node(StatePublisherNode, args, executor_factory=EventsExecutor)

@@ -53,6 +53,12 @@ SENSOR_TOPICS = {'gyro': ('/imu/data',),
                  'gps': ('/gps/fix',)}
 ARM_RECORDED_TOPICS = ('/clock', '/joint_states', '/joint_torques', CONTROLLER_STATE_TOPIC,
                        TRAJECTORY_TOPIC, STATUS_TOPIC, '/rosout', *TF_TOPICS)
+STATE_PUBLISHER_INPUT = {'qos_overrides./joint_states.subscription.durability': 'transient_local',
+                         'qos_overrides./joint_states.subscription.depth': 500}
+"""The state publisher's joint states read as the replayed stream of a node off the lockstep
+loop (robotica_kin.ros.qos, ``STREAM_REPLAY_SUB_QOS``: transient local, the publisher's history of
+500): with the node's default, keep-last 100, it lost blocks of 26 to 80 joint states of the demo
+(and their /tf) when it fell behind on a loaded machine."""
 STAMPED_CMD_VEL = False
 """``enable_stamped_cmd_vel`` of the tracker and the simulator of a run (one value for both).
 
@@ -296,7 +302,7 @@ def _plan_arm(scenario: Scenario) -> list[NodeSpec]:
             'first_period': scenario.step_period, **gains}, use_sim_time=False),
         NodeSpec('robotica_sim', 'arm_simulator', 'simulator', simulator, use_sim_time=False),
         NodeSpec('robotica_kin', 'state_publisher', 'state_publisher',
-                 _arm_description(plant), use_sim_time=False),
+                 {**_arm_description(plant), **STATE_PUBLISHER_INPUT}, use_sim_time=False),
     ]
 
 
@@ -464,8 +470,9 @@ def _plan_mobile(scenario: Scenario) -> list[NodeSpec]:
                   'wheelbase': robot.wheelbase, 'enable_stamped_cmd_vel': STAMPED_CMD_VEL},
                  remappings={'/path_tracker/path': '/path'}),
         NodeSpec('robotica_kin', 'state_publisher', 'state_publisher',
-                 {key: value for key, value in simulator.items()
-                  if key.startswith('vehicle.')}, use_sim_time=False),
+                 {**{key: value for key, value in simulator.items()
+                     if key.startswith('vehicle.')}, **STATE_PUBLISHER_INPUT},
+                 use_sim_time=False),
         NodeSpec('robotica_sim', 'simulator', 'simulator',
                  {**simulator, 'enable_stamped_cmd_vel': STAMPED_CMD_VEL}, use_sim_time=False),
     ]

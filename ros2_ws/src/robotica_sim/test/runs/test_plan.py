@@ -245,8 +245,9 @@ def test_ej8_4_plan_wires_the_arm_loop():
                            'state_publisher']
     assert nodes['simulator'].executable == 'arm_simulator'
     # The arm drawn from the plant's DH table: (alpha, a, theta, d, sigma) of the 2R, a = 0, l1.
-    assert nodes['state_publisher'].parameters == {
-        'robot': '', 'dh_table': [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 3.0, 0.0, 0.0, 0.0]}
+    described = nodes['state_publisher'].parameters
+    assert (described['robot'], described['dh_table']) == (
+        '', [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 3.0, 0.0, 0.0, 0.0])
     plant, controller = nodes['simulator'].parameters, nodes['joint_controller'].parameters
     # The plant is the true arm (2, 1 kg), the controller's model the wrong one (2.1, 0.9 kg).
     assert plant['dyn_table'] == np.ravel(two_link_arm(2.0, 1.0, 3.0, 1.0)[1]).tolist()
@@ -366,8 +367,11 @@ def test_every_mobile_run_describes_its_vehicle_and_records_tf(tmp_path, vehicle
     scenario = load_scenario(path)
     nodes = by_name(plan_run(scenario))
     described = nodes['state_publisher'].parameters
-    assert described == {key: value for key, value in nodes['simulator'].parameters.items()
-                         if key.startswith('vehicle.')}
+    assert {k: v for k, v in described.items() if k.startswith('vehicle.')} == {
+        key: value for key, value in nodes['simulator'].parameters.items()
+        if key.startswith('vehicle.')}
+    # Its joint states replayed, as the inputs of every node off the lockstep loop.
+    assert described['qos_overrides./joint_states.subscription.durability'] == 'transient_local'
     assert (described['vehicle.type'], described['vehicle.wheel_radius'],
             described['vehicle.track']) == (vehicle_type, 0.15, 0.6)
     encoder = nodes['encoder_emulator'].parameters
