@@ -480,7 +480,8 @@ def _interrupt(argv: list, signum: int, when) -> tuple[int, list[str]]:
     deadline = time.monotonic() + 60.0
     while not when(process.pid) and process.poll() is None and time.monotonic() < deadline:
         time.sleep(0.005)
-    assert process.poll() is None, 'the command ended before the signal'
+    if process.poll() is not None:
+        pytest.fail(f'the command ended before the signal: {process.communicate()[1]}')
     process.send_signal(signum)
     _, err = process.communicate(timeout=60)
     return process.returncode, err.splitlines()
