@@ -23,22 +23,24 @@ class PathPublisherNode(GuardedNode):
 
     def __init__(self) -> None:
         super().__init__('path_publisher')
-        coords = []
+        # Every parameter is declared before any is checked (robotica params lists them all).
         for axis in ('x', 'y'):
             self.declare_parameter(axis, Parameter.Type.DOUBLE_ARRAY, ParameterDescriptor(
                 description=f'{axis} coordinates of the path points [m]', read_only=True))
+        self.declare_parameter('t', Parameter.Type.DOUBLE_ARRAY, ParameterDescriptor(
+            description='Optional time of each path point [s], strictly increasing: the path '
+            'is then a trajectory', read_only=True))
+        frame = declare(self, 'frame_id', 'odom', 'Frame of the path', read_only=True)
+        coords = []
+        for axis in ('x', 'y'):
             try:
                 coords.append(np.asarray(self.get_parameter(axis).value, dtype=float))
             except ParameterUninitializedException:
                 raise ValueError(f'parameter {axis!r} (path points) is required') from None
-        self.declare_parameter('t', Parameter.Type.DOUBLE_ARRAY, ParameterDescriptor(
-            description='Optional time of each path point [s], strictly increasing: the path '
-            'is then a trajectory', read_only=True))
         try:
             times = np.asarray(self.get_parameter('t').value, dtype=float)
         except ParameterUninitializedException:
             times = None
-        frame = declare(self, 'frame_id', 'odom', 'Frame of the path', read_only=True)
         x, y = coords
         if x.shape != y.shape or x.size < 2:
             raise ValueError(f'x and y need the same length >= 2, got {x.size} and {y.size}')
