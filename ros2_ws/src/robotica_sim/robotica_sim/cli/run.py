@@ -27,6 +27,7 @@ from robotica_sim.bags.info import BagError
 from robotica_sim.bags.repair import partial_reason, repair_command
 from robotica_sim.bags.run_record import COMPLETED, record_end
 from robotica_sim.cli.options import domain_id, domain_warning, nonempty, path, real
+from robotica_sim.cli.view import add_host_port
 from robotica_sim.grading.summary import summarize_bag
 from robotica_sim.runs.plan import NodeSpec, plan_run, recorded_topics
 from robotica_sim.runs.scenario import load_scenario, with_overrides
@@ -41,6 +42,7 @@ EPILOG = """examples:
   robotica run demo --pacing realtime      watch it at wall-clock speed
   robotica run ej8_2                       Ej. 8.2: computed torque with a wrong model
   robotica run my_scenario.yaml --json     machine-readable summary on stdout
+  robotica run demo --pacing realtime --view    watch it live in Foxglove (docs/view.md)
 """
 MATCH_SETTLE = 0.5   # [s] wall clock, see _wait_ready
 GRAPH_WAIT = 5.0     # [s] wall clock, see _wait_for_graph
@@ -113,6 +115,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         'duration)')
     parser.add_argument('--json', action='store_true', help='print the summary as JSON')
     parser.add_argument('--quiet', action='store_true', help='no progress on stderr')
+    parser.add_argument('--view', action='store_true',
+                        help='relay the run to the Foxglove app on ws://HOST:PORT (the '
+                        'view_relay node, as robotica view; docs/view.md)')
+    add_host_port(parser)
 
 
 def _log(args: argparse.Namespace, text: str) -> None:
@@ -150,7 +156,9 @@ def _prepare(args: argparse.Namespace, scenario, plan: list[NodeSpec],
     recorder = NodeSpec('robotica_sim', 'recorder', 'recorder', {
         'output': str(bag), 'topics': list(recorded_topics(scenario)),
         'metadata_files': [str(scenario_copy), str(params_file), str(run_file)]})
-    nodes = [recorder] + plan
+    relay = NodeSpec('robotica_sim', 'view_relay', 'view_relay',
+                     {'host': args.host, 'port': args.port}, use_sim_time=False)
+    nodes = [recorder] + plan + ([relay] if args.view else [])
     # What ran, as run (the recorder stores it in the bag: robotica_sim.bags.run_record).
     overrides = {k: v for k, v in (('pacing', args.pacing), ('duration', args.duration))
                  if v is not None}
@@ -424,10 +432,13 @@ def main(args: argparse.Namespace) -> int:
         print(f'robotica run: cannot summarise the run: {err}; logs in {run_dir / "logs"}',
               file=sys.stderr)
         return code or 1
+    view = {'view': f'ws://{args.host}:{args.port}'} if args.view else {}
     if args.json:
-        print(json.dumps({**summary.as_dict(), 'faults': faults, 'exit_code': code}))
+        print(json.dumps({**summary.as_dict(), **view, 'faults': faults, 'exit_code': code}))
     else:
         print(f'bag: {bag}')
+        if view:
+            print(f'view: relayed on {view["view"]} (log: {supervisor.log_path("view_relay")})')
         print(f'{scenario.name}: {summary.line()}'
               + ''.join(f'; node {name} {text}' for name, text in faults.items()))
     return code
