@@ -47,3 +47,6 @@ set +u   # colcon's setup.bash reads unset variables
 . "$ROBOTICA_ROOT/ros2_ws/install/setup.bash"
 if [ -n "$_robotica_nounset" ]; then set -u; fi
 unset _robotica_nounset
+# Completion of `robotica node PACKAGE EXECUTABLE` (bash; other shells go without).
+# shellcheck disable=SC1091
+if [ -n "${BASH_VERSION:-}" ]; then . "$ROBOTICA_ROOT/scripts/completion.bash"; fi

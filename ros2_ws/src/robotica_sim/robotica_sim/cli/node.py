@@ -11,12 +11,15 @@ line listing those that exist, exit code 2.
 
 ``robotica node --list`` prints the packages that have executables, ``robotica node --list PKG``
 the executables of PKG, one a line: what the bash completion of ``scripts/completion.bash``
-(sourced by ``scripts/env.sh``) offers after ``robotica node``.
+(sourced by ``scripts/env.sh``) offers after ``robotica node``. The completion runs
+``python3 -m robotica_sim.cli.node [PKG]``, the same lists without the import of every verb
+(0.2 s instead of 2 s).
 """
 import argparse
 import os
 from pathlib import Path
 import sys
+from typing import Optional
 
 from ament_index_python.packages import get_packages_with_prefixes
 from robotica_sim.runs.supervisor import local_environment
@@ -56,15 +59,20 @@ def packages() -> dict[str, str]:
             if executables(prefix, name)}
 
 
+def listing(package: Optional[str]) -> list[str]:
+    """Return the packages with executables, or the executables of ``package`` (none: [])."""
+    found = packages()
+    if package is None:
+        return list(found)
+    return executables(found[package], package) if package in found else []
+
+
 def main(args: argparse.Namespace) -> int:
     """List, or replace this process by the node; return 2 for an unknown name."""
-    found = packages()
     if args.list:
-        if args.package is None:
-            print('\n'.join(found))
-        elif args.package in found:
-            print('\n'.join(executables(found[args.package], args.package)))
+        print('\n'.join(listing(args.package)))
         return 0
+    found = packages()
     if args.package is None or args.executable is None:
         print('robotica node: error: PACKAGE and EXECUTABLE are required (robotica node --list '
               'lists them)', file=sys.stderr)
@@ -81,3 +89,7 @@ def main(args: argparse.Namespace) -> int:
     path = str(Path(found[args.package]) / 'lib' / args.package / args.executable)
     sys.stdout.flush()
     os.execve(path, [path, *args.node_args], local_environment())
+
+
+if __name__ == '__main__':   # the lists of --list, for the shell's completion
+    print('\n'.join(listing(sys.argv[1] if len(sys.argv) > 1 else None)))
