@@ -235,14 +235,14 @@ def _check_alive(supervisor: ProcessSupervisor, names: list[str]) -> None:
         raise _death(supervisor, *dead)
 
 
-def _wait_ready(args, executor, node, supervisor, names) -> None:
+def _wait_ready(args, executor, node, supervisor, names, published) -> None:
     deadline = time.monotonic() + args.discovery_timeout
     ready = node.create_client(Trigger, '/recorder/ready')
     while True:
         _check_alive(supervisor, names)
         answer = _call(executor, ready, deadline)
         if answer.success:
-            _wait_for_graph(args, executor, node, names)
+            _wait_for_graph(args, executor, node, names, published)
             # The recorder sees its own side of each match; a publisher may match it a moment
             # later. Streams keep a history for that (robotica_kin.ros.qos), commands do not:
             # give the publishers' side of discovery this long to complete.
@@ -256,8 +256,14 @@ def _wait_ready(args, executor, node, supervisor, names) -> None:
         executor.spin_once(timeout_sec=0.2)
 
 
-def _unpublished_subscriptions(node, names: list[str]) -> list[str]:
-    """Return '<node>: <topic>' for each subscription of the run's nodes with no publisher yet."""
+def _unpublished_subscriptions(node, names: list[str], published: set[str]) -> list[str]:
+    """
+    Return '<node>: <topic>' for each subscription of the run's nodes with no publisher yet.
+
+    Only the topics of ``published`` (those the run's nodes publish) count: a subscription to a
+    topic no node of this run publishes is an optional input (the markers node's GPS fixes in a
+    run without GPS) and would only hold the start for GRAPH_WAIT.
+    """
     waiting = []
     for name in names:
         try:
@@ -266,12 +272,11 @@ def _unpublished_subscriptions(node, names: list[str]) -> list[str]:
             waiting.append(f'{name}: (not discovered)')
             continue
         waiting += [f'{name}: {topic}' for topic, _ in topics
-                    if topic not in ('/parameter_events', '/clock')
-                    and not node.get_publishers_info_by_topic(topic)]
+                    if topic in published and not node.get_publishers_info_by_topic(topic)]
     return waiting
 
 
-def _wait_for_graph(args, executor, node, names: list[str]) -> None:
+def _wait_for_graph(args, executor, node, names: list[str], published: set[str]) -> None:
     """
     Wait (up to GRAPH_WAIT) until every subscription of the run's nodes has a publisher.
 
@@ -281,10 +286,10 @@ def _wait_for_graph(args, executor, node, names: list[str]) -> None:
     optional input), so the wait is bounded, and what is still missing is logged.
     """
     deadline = time.monotonic() + GRAPH_WAIT
-    waiting = _unpublished_subscriptions(node, names)
+    waiting = _unpublished_subscriptions(node, names, published)
     while waiting and time.monotonic() < deadline:
         executor.spin_once(timeout_sec=0.1)
-        waiting = _unpublished_subscriptions(node, names)
+        waiting = _unpublished_subscriptions(node, names, published)
     if waiting:
         _log(args, f'no publisher yet for {", ".join(waiting)}; starting anyway')
 
@@ -316,7 +321,8 @@ def _simulate(args, scenario, plan: list[NodeSpec], run_dir: Path,
         Clock, '/clock', lambda m: sim_time.__setitem__(0, m.clock.sec + m.clock.nanosec * 1e-9),
         QoSProfile(depth=1, reliability=ReliabilityPolicy.BEST_EFFORT))
     try:
-        _wait_ready(args, executor, node, supervisor, names)
+        _wait_ready(args, executor, node, supervisor, names,
+                    set(recorded_topics(scenario)) - {'/clock'})
         _call(executor, node.create_client(Trigger, '/simulator/start'),
               time.monotonic() + args.discovery_timeout)
         _log(args, f'running {scenario.name}: {scenario.duration} s simulated, '

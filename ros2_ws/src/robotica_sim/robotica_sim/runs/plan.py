@@ -45,14 +45,15 @@ TRACKING_ERROR_TOPIC = '/path_tracker/tracking_error'
 CONTROLLER_STATE_TOPIC = '/joint_controller/controller_state'
 TRAJECTORY_TOPIC = '/joint_controller/joint_trajectory'
 TF_TOPICS = ('/tf', '/tf_static', '/robot_description')   # the state publisher's (and /tf)
+MARKERS_TOPIC = '/markers'   # the markers node's MarkerArray: what a viewer draws of the run
 RECORDED_TOPICS = ('/clock', '/cmd_vel', '/odom', '/ground_truth/odom', '/joint_states',
                    '/wheel_encoders', '/path', TRACKING_ERROR_TOPIC, STATUS_TOPIC, '/rosout',
-                   *TF_TOPICS)
+                   *TF_TOPICS, MARKERS_TOPIC)
 SENSOR_TOPICS = {'gyro': ('/imu/data',),
                  'compass': ('/compass/heading', '/compass/magnetic_field'),
                  'gps': ('/gps/fix',)}
 ARM_RECORDED_TOPICS = ('/clock', '/joint_states', '/joint_torques', CONTROLLER_STATE_TOPIC,
-                       TRAJECTORY_TOPIC, STATUS_TOPIC, '/rosout', *TF_TOPICS)
+                       TRAJECTORY_TOPIC, STATUS_TOPIC, '/rosout', *TF_TOPICS, MARKERS_TOPIC)
 STATE_PUBLISHER_INPUT = {'qos_overrides./joint_states.subscription.durability': 'transient_local',
                          'qos_overrides./joint_states.subscription.depth': 500}
 """The state publisher's joint states read as the replayed stream of a node off the lockstep
@@ -303,6 +304,8 @@ def _plan_arm(scenario: Scenario) -> list[NodeSpec]:
         NodeSpec('robotica_sim', 'arm_simulator', 'simulator', simulator, use_sim_time=False),
         NodeSpec('robotica_kin', 'state_publisher', 'state_publisher',
                  {**_arm_description(plant), **STATE_PUBLISHER_INPUT}, use_sim_time=False),
+        NodeSpec('robotica_sim', 'markers', 'markers', _arm_description(plant),
+                 use_sim_time=False),
     ]
 
 
@@ -457,6 +460,7 @@ def _plan_mobile(scenario: Scenario) -> list[NodeSpec]:
     _node_check(where, 'odometry', ODOMETRY_KEYS,
                 lambda: check_parameters(ODOMETRY_PARAMETERS, estimator))
     steered = robot.type in STEERED_TYPES
+    vehicle = {key: value for key, value in simulator.items() if key.startswith('vehicle.')}
     return [
         NodeSpec('robotica_ctrl', 'path_publisher', 'path_publisher', {
             'x': [p[0] for p in points], 'y': [p[1] for p in points],
@@ -470,8 +474,8 @@ def _plan_mobile(scenario: Scenario) -> list[NodeSpec]:
                   'wheelbase': robot.wheelbase, 'enable_stamped_cmd_vel': STAMPED_CMD_VEL},
                  remappings={'/path_tracker/path': '/path'}),
         NodeSpec('robotica_kin', 'state_publisher', 'state_publisher',
-                 {**{key: value for key, value in simulator.items()
-                     if key.startswith('vehicle.')}, **STATE_PUBLISHER_INPUT},
+                 {**vehicle, **STATE_PUBLISHER_INPUT}, use_sim_time=False),
+        NodeSpec('robotica_sim', 'markers', 'markers', {**vehicle, **_origin(scenario)},
                  use_sim_time=False),
         NodeSpec('robotica_sim', 'simulator', 'simulator',
                  {**simulator, 'enable_stamped_cmd_vel': STAMPED_CMD_VEL}, use_sim_time=False),

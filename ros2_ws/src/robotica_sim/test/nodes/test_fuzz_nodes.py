@@ -225,7 +225,8 @@ RECORDED = {'/clock': Clock, '/cmd_vel': Twist, '/vehicle_command': VehicleComma
             '/compass/heading': Imu, '/compass/magnetic_field': MagneticField,
             '/gps/fix': NavSatFix, '/joint_torques': Float64MultiArray,
             CONTROLLER_STATE_TOPIC: JointControllerState, TRAJECTORY_TOPIC: JointTrajectory,
-            '/tf': TFMessage, '/tf_static': TFMessage, '/robot_description': String}
+            '/tf': TFMessage, '/tf_static': TFMessage, '/robot_description': String,
+            '/markers': MarkerArray}
 
 
 def _default(msg_type):

@@ -31,6 +31,7 @@ NODE_CLASSES = {
     'odometry': 'robotica_sim.nodes.odometry:OdometryNode',
     'simulator': 'robotica_sim.nodes.simulator:SimulatorNode',
     'arm_simulator': 'robotica_sim.nodes.arm_simulator:ArmSimulatorNode',
+    'markers': 'robotica_sim.nodes.markers:MarkersNode',
 }
 
 EDGES = [

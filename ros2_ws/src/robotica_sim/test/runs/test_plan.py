@@ -14,7 +14,7 @@ from robotica_sim.runs.scenario import load_scenario, PathSpec, Scenario, Scenar
 SHIPPED = Path(__file__).resolve().parents[2] / 'scenarios'
 DEMO = SHIPPED / 'demo.yaml'
 START_ORDER = ['path_publisher', 'encoder_emulator', 'odometry', 'path_tracker',
-               'state_publisher', 'simulator']
+               'state_publisher', 'markers', 'simulator']
 
 
 def write(tmp_path, text, name='scenario.yaml'):
@@ -45,6 +45,7 @@ def test_nodes_in_start_order(demo_plan):
         ('robotica_sim', 'odometry'),
         ('robotica_ctrl', 'path_tracker'),
         ('robotica_kin', 'state_publisher'),
+        ('robotica_sim', 'markers'),
         ('robotica_sim', 'simulator'),
     ]
 
@@ -242,12 +243,14 @@ def test_ej8_4_plan_wires_the_arm_loop():
     scenario = load_scenario(str(SHIPPED / 'ej8_4.yaml'))
     nodes = by_name(plan_run(scenario))
     assert list(nodes) == ['joint_trajectory_publisher', 'joint_controller', 'simulator',
-                           'state_publisher']
+                           'state_publisher', 'markers']
     assert nodes['simulator'].executable == 'arm_simulator'
     # The arm drawn from the plant's DH table: (alpha, a, theta, d, sigma) of the 2R, a = 0, l1.
     described = nodes['state_publisher'].parameters
     assert (described['robot'], described['dh_table']) == (
         '', [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 3.0, 0.0, 0.0, 0.0])
+    # The markers draw the reference tool pose on the same arm.
+    assert nodes['markers'].parameters == {'robot': '', 'dh_table': described['dh_table']}
     plant, controller = nodes['simulator'].parameters, nodes['joint_controller'].parameters
     # The plant is the true arm (2, 1 kg), the controller's model the wrong one (2.1, 0.9 kg).
     assert plant['dyn_table'] == np.ravel(two_link_arm(2.0, 1.0, 3.0, 1.0)[1]).tolist()
@@ -370,6 +373,12 @@ def test_every_mobile_run_describes_its_vehicle_and_records_tf(tmp_path, vehicle
     assert {k: v for k, v in described.items() if k.startswith('vehicle.')} == {
         key: value for key, value in nodes['simulator'].parameters.items()
         if key.startswith('vehicle.')}
+    # The markers draw the same vehicle, and the GPS fixes in the odometry's ENU origin.
+    drawn = nodes['markers'].parameters
+    assert {k: v for k, v in drawn.items() if k.startswith('vehicle.')} == {
+        k: v for k, v in described.items() if k.startswith('vehicle.')}
+    assert {k: v for k, v in drawn.items() if k.startswith('origin.')} == {
+        k: v for k, v in nodes['odometry'].parameters.items() if k.startswith('origin.')}
     # Its joint states replayed, as the inputs of every node off the lockstep loop.
     assert described['qos_overrides./joint_states.subscription.durability'] == 'transient_local'
     assert (described['vehicle.type'], described['vehicle.wheel_radius'],
