@@ -29,6 +29,13 @@ def test_an_unknown_package_is_one_line_naming_those_that_exist(capsys):
         err.split('there are: ')[1].strip().split(', '))
 
 
+def test_a_package_without_an_executable_is_a_usage_error(capsys):
+    code, out, err = robotica(capsys, 'node', 'robotica_sim')
+    assert (code, out) == (2, '')
+    assert err == 'robotica node: error: PACKAGE and EXECUTABLE are required (robotica node ' \
+        '--list lists them)\n'
+
+
 def test_an_unknown_executable_is_one_line_naming_those_of_the_package(capsys):
     code, out, err = robotica(capsys, 'node', 'robotica_ctrl', 'simulator', '--ros-args', '-p',
                               'x:=1')

@@ -11,6 +11,7 @@ from nav_msgs.msg import Odometry
 import pytest
 from rclpy.serialization import deserialize_message
 from robotica_kin.ros.qos import STREAM_PUB_QOS
+from robotica_sim.cli.main import run_verb
 
 
 def _relay_tests():
@@ -31,6 +32,17 @@ def robotica(*args: str, **kwargs) -> subprocess.Popen:
     """Start ``robotica ARGS`` (stdout and stderr piped, text)."""
     return subprocess.Popen([*ROBOTICA, *args], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                             text=True, env=dict(os.environ), **kwargs)
+
+
+@pytest.mark.parametrize('argv', [
+    ['view', '--port', '0'], ['view', '--port', '65536'], ['view', '--host', ''],
+    ['run', 'demo', '--view', '--port', '-1'], ['run', 'demo', '--view', '--port', '8e3']])
+def test_a_bad_host_or_port_is_a_usage_error_in_one_line(capsys, argv):
+    assert run_verb(argv) == 2
+    out, err = capsys.readouterr()
+    assert out == '' and err.count('\n') == 1
+    assert err.startswith(f'robotica {argv[0]}: error: argument --') and \
+        ('--port' in err or '--host' in err)
 
 
 @pytest.mark.ros
