@@ -49,7 +49,7 @@ def test_the_readme_has_a_mobile_and_an_arm_example():
 
 
 @pytest.mark.ros
-@pytest.mark.parametrize('block', [   # the arm's three starts take 25-40 s on a loaded machine
+@pytest.mark.parametrize('block', [   # the arm: 8 s, 37 s on a loaded machine
     pytest.param(BLOCKS[0], id='mobile'), pytest.param(BLOCKS[1], id='arm',
                                                        marks=pytest.mark.slow)])
 def test_a_readme_example_moves_the_robot(block, ros_node, spin, tmp_path):
