@@ -215,6 +215,8 @@ class GuardedNode(Node):
             try:
                 return callback(*args)
             except Exception as err:   # noqa: B902 - the guard's purpose: any error, one message
+                if not self.context.ok():   # shutting down (SIGINT, SIGTERM): its logger and
+                    return None             # publishers are gone, and there is nothing to save
                 self._callback_failed(source, err, safe_output)
                 return fallback(*args) if fallback is not None else None
         return guarded

@@ -62,6 +62,20 @@ def test_a_failing_callback_is_dropped_and_the_safe_output_issued(guarded):
     assert node.safe == ['speed'] and node.callback_errors == 1
 
 
+def test_a_callback_failing_during_shutdown_is_silent(guarded):
+    # A timer racing SIGINT fails on the invalid context; reporting it would fail too ("Failed
+    # to publish log message to rosout: publisher's context is invalid") and kill the node.
+    node, context = guarded
+
+    def callback(msg):
+        raise RuntimeError("publisher's context is invalid")
+
+    sub = node.create_subscription(Float64, 'late', callback, 10)
+    rclpy.try_shutdown(context=context)
+    assert sub.callback(Float64(data=1.0)) is None
+    assert node.safe == [] and node.callback_errors == 0
+
+
 def test_an_observing_subscription_drops_without_the_safe_output(guarded):
     node, _ = guarded
     sub = node.create_subscription(Float64, 'seen', lambda msg: bounded('x', msg.data, 1.0), 10,
