@@ -12,7 +12,9 @@ on the differential, tricycle and Ackermann vehicles along four paths, on the tr
 the EKF's (encoders, compass, DGPS), and reports cross-track, heading, settling, control effort
 and the time per ``update`` call; see :mod:`robotica_sim.benchmarks.tracking`. ``robotica bench
 recorder`` offers the recorder node message rates from 5 000 to 30 000 per second and counts
-what reaches its bag; see :mod:`robotica_sim.benchmarks.recorder`.
+what reaches its bag; see :mod:`robotica_sim.benchmarks.recorder`. ``robotica bench view`` runs
+the demo with and without TF and markers, interleaved, and once with the Foxglove relay, whose
+forwarded messages it compares with the bag's; see :mod:`robotica_sim.benchmarks.visualisation`.
 """
 import argparse
 import dataclasses
@@ -30,10 +32,12 @@ from robotica_sim.benchmarks.mobile import mobile_core_benchmark
 from robotica_sim.benchmarks.recorder import RATES, recorder_benchmark
 from robotica_sim.benchmarks.tracking import (format_tracking_table, PATHS, plot_tracking,
                                               POSE_SOURCES, tracking_benchmark, VEHICLES)
+from robotica_sim.benchmarks.visualisation import visualisation_benchmark
 from robotica_sim.cli.options import integer, path, real
 
 HELP = ('measure the speed of the kinematics, the arm loop, the mobile loop, the tracking '
-        'laws or the recorder (robotica bench kin|arm|mobile|tracking|recorder)')
+        'laws, the recorder or the viewer (robotica bench kin|arm|mobile|tracking|recorder|'
+        'view)')
 EPILOG = """examples:
   robotica bench kin                       1000 configurations per robot, Markdown table
   robotica bench kin --count 200 --json    quicker, machine-readable
@@ -46,14 +50,18 @@ EPILOG = """examples:
   robotica bench tracking --laws pure_pursuit gpc --vehicles ackermann --poses ground_truth
   robotica bench recorder                  messages/s the recorder takes without loss
   robotica bench recorder --rates 20000 --loop-duration 10
+  robotica bench view                      the demo 3 times with and 3 without TF and markers,
+                                           then once with the Foxglove relay (about 2 min)
+  robotica bench view --runs 1 --no-relay
 """
-SUITES = ('kin', 'arm', 'mobile', 'tracking', 'recorder')
+SUITES = ('kin', 'arm', 'mobile', 'tracking', 'recorder', 'view')
 # Upper bounds of the sizes: beyond them a benchmark runs for hours (1e7 DDS round trips, a
 # day-long ROS loop) or fills the memory (1e7 batched Jacobians are 2.9 GB), and a typo should
 # not be taken for such a request.
 MAX_COUNT = 100_000
 MAX_BASELINE_IK = 10_000
 MAX_LOOP_DURATION = 600.0   # [s]
+MAX_VIEW_RUNS = 50          # demo runs each way of bench view
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -62,7 +70,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help='what to measure: kin = kinematics, arm = the manipulator loop, '
                         'mobile = the vehicle loop with every sensor and the EKF, '
                         'tracking = the path-tracking laws on three vehicles, '
-                        "recorder = the recorder node's throughput")
+                        "recorder = the recorder node's throughput, "
+                        "view = the cost of TF and markers and the relay's throughput")
     parser.add_argument('--count', type=integer(1, MAX_COUNT), default=1000,
                         help='kin: random configurations per robot; arm: simulated steps of '
                         'the core and DDS round trips (default 1000; arm: at least 5000 steps '
@@ -93,6 +102,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         'encoders, compass and DGPS)')
     parser.add_argument('--plots', type=path, metavar='DIR',
                         help='tracking: also write the PNG figures into DIR (created)')
+    parser.add_argument('--runs', type=integer(1, MAX_VIEW_RUNS), default=3,
+                        help='view: demo runs with and as many without TF and markers '
+                        f'(default 3, at most {MAX_VIEW_RUNS})')
+    parser.add_argument('--no-relay', action='store_true',
+                        help='view: without the run with the Foxglove relay')
     parser.add_argument('--json', action='store_true', help='print JSON instead of a table')
     parser.add_argument('--quiet', action='store_true', help='no progress on stderr')
 
@@ -125,6 +139,8 @@ def main(args: argparse.Namespace) -> int:
         return _tracking(args, progress)
     if args.suite == 'recorder':
         return _recorder(args, progress)
+    if args.suite == 'view':
+        return _view(args, progress)
     rows = run_kinematics_benchmark(args.count, args.baseline_ik_count, args.seed, progress)
     if args.json:
         print(json.dumps([dataclasses.asdict(row) for row in rows], indent=2))
@@ -174,6 +190,15 @@ def _recorder(args: argparse.Namespace, progress) -> int:
         rows = recorder_benchmark(tuple(args.rates), seconds, progress)
     except RuntimeError as err:
         print(f'robotica bench: recorder: {err}', file=sys.stderr)
+        return 1
+    return _print_rows(args, rows)
+
+
+def _view(args: argparse.Namespace, progress) -> int:
+    try:
+        rows = visualisation_benchmark(args.runs, not args.no_relay, progress)
+    except (RuntimeError, ValueError) as err:
+        print(f'robotica bench: view: {err}', file=sys.stderr)
         return 1
     return _print_rows(args, rows)
 

@@ -12,7 +12,7 @@ the core function the node builds its model with (``vehicle_simulation``, ``make
 scenario key (``ej8_2.yaml: reference.period must be > 0 s, got [0.0]``), not a node that
 exits with code 1 after the others have started.
 """
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 import inspect
 import math
 from typing import Any, Callable, Mapping
@@ -54,6 +54,9 @@ SENSOR_TOPICS = {'gyro': ('/imu/data',),
                  'gps': ('/gps/fix',)}
 ARM_RECORDED_TOPICS = ('/clock', '/joint_states', '/joint_torques', CONTROLLER_STATE_TOPIC,
                        TRAJECTORY_TOPIC, STATUS_TOPIC, '/rosout', *TF_TOPICS, MARKERS_TOPIC)
+VISUALISATION_TOPICS = (*TF_TOPICS, MARKERS_TOPIC)
+VISUALISATION_NODES = ('state_publisher', 'markers')
+"""What a scenario's ``visualisation: false`` leaves out of a run: topics and executables."""
 STATE_PUBLISHER_INPUT = {'qos_overrides./joint_states.subscription.durability': 'transient_local',
                          'qos_overrides./joint_states.subscription.depth': 500}
 """The state publisher's joint states read as the replayed stream of a node off the lockstep
@@ -167,6 +170,9 @@ def path_points(scenario: Scenario) -> list[list[float]]:
 
 def recorded_topics(scenario: Scenario) -> tuple[str, ...]:
     """Return the topics the recorder records for ``scenario`` (those its nodes publish)."""
+    if not scenario.visualisation:
+        return tuple(topic for topic in recorded_topics(replace(scenario, visualisation=True))
+                     if topic not in VISUALISATION_TOPICS)
     if scenario.is_manipulator:
         return ARM_RECORDED_TOPICS
     topics = list(RECORDED_TOPICS)
@@ -196,8 +202,19 @@ def followed_topics(scenario: Scenario) -> tuple[str, ...]:
 
 
 def plan_run(scenario: Scenario) -> list[NodeSpec]:
-    """Return the nodes of a run, in start order (the recorder is added by the caller)."""
-    return _plan_arm(scenario) if scenario.is_manipulator else _plan_mobile(scenario)
+    """
+    Return the nodes of a run, in start order (the recorder is added by the caller).
+
+    Without ``visualisation`` the state publisher and the markers node are left out, and the
+    odometry and the simulator publish no /tf (``publish_tf`` false, ``truth_frame_id`` '').
+    """
+    nodes = _plan_arm(scenario) if scenario.is_manipulator else _plan_mobile(scenario)
+    if scenario.visualisation:
+        return nodes
+    off: dict[str, dict] = {'odometry': {'publish_tf': False},
+                            'simulator': {'truth_frame_id': ''}}
+    return [replace(node, parameters={**node.parameters, **off.get(node.executable, {})})
+            for node in nodes if node.executable not in VISUALISATION_NODES]
 
 
 def _floats(values) -> list[float]:

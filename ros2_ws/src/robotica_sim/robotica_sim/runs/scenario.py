@@ -190,6 +190,7 @@ class Scenario:
     seed: int = 0
     pacing: str = 'lockstep'                       # 'lockstep' or 'realtime'
     step_period: float = 0.02                      # [s] simulated
+    visualisation: bool = True                     # /tf, /robot_description, /markers
     robot: RobotSpec = RobotSpec()
     path: PathSpec = PathSpec()
     sensors: SensorsSpec = SensorsSpec()

@@ -1,0 +1,72 @@
+"""
+Tests of robotica_sim.benchmarks.visualisation: the relay log's summary, the tables, one run.
+
+The pure parts are checked on hand-written logs and counts against values computed by hand;
+one short end-to-end benchmark (slow) checks that the viewer's nodes leave the result alone.
+"""
+import pytest
+from robotica_sim.benchmarks.visualisation import (cost_rows, parse_relay_summary, relay_rows,
+                                                   visualisation_benchmark)
+
+LOG = """\
+[INFO] [1795594627.008542480] [view_relay]: relaying /robot_description [std_msgs/msg/String]
+[INFO] [1795594642.416262952] [view_relay.summary]: forwarded 8160 messages: /tf 4803, \
+/clock 1601, /odom 1601, /markers 65, /parameter_events 44, /rosout 43, /tf_static 2, /path 1
+"""
+
+
+def test_parse_relay_summary():
+    assert parse_relay_summary(LOG) == {
+        '/tf': 4803, '/clock': 1601, '/odom': 1601, '/markers': 65, '/parameter_events': 44,
+        '/rosout': 43, '/tf_static': 2, '/path': 1}
+
+
+def test_parse_relay_summary_takes_the_last_and_refuses_a_wrong_total():
+    second = '[INFO] [2.0] [view_relay.summary]: forwarded 3 messages: /odom 3\n'
+    assert parse_relay_summary(LOG + second) == {'/odom': 3}
+    with pytest.raises(ValueError, match='add up to 3, not 4'):
+        parse_relay_summary('[INFO] [2.0] [view_relay.summary]: forwarded 4 messages: /a 1, '
+                            '/b 2\n')
+    with pytest.raises(ValueError, match='no summary line'):
+        parse_relay_summary('[INFO] [1.0] [view_relay]: relaying /odom\n')
+
+
+def test_relay_rows():
+    forwarded = {'/tf': 300, '/odom': 100, '/parameter_events': 4}
+    recorded = {'/tf': 297, '/odom': 102, '/markers': 5}
+    rows = relay_rows(forwarded, recorded, 2.0)
+    assert rows[0].what == 'view relay throughput'
+    assert rows[0].value == pytest.approx(202.0)          # 404 messages / 2 s
+    assert '2 lost' in rows[0].detail                     # the bag's 2 more /odom
+    by_topic = {row.what: row for row in rows[1:]}
+    assert [row.what for row in rows[1:]] == ['relay /tf', 'relay /odom',
+                                              'relay /parameter_events']
+    assert by_topic['relay /odom'].detail == 'recorded 102, lost 2'
+    assert by_topic['relay /tf'].detail == 'recorded 297, lost 0 (the bag has 3 fewer)'
+    assert by_topic['relay /parameter_events'].detail == 'not recorded'
+
+
+def test_cost_rows():
+    rows = cost_rows([4.0, 3.0, 3.5], [5.0, 4.5, 4.0], [0.0166, 0.0166, 0.0166],
+                     [0.0166, 0.0166, 0.0166])
+    on, off, cost, cross_on, cross_off = rows
+    assert (on.value, off.value) == (3.5, 4.5)
+    assert on.detail.endswith('3 runs: 4.00, 3.00, 3.50; spread 1.00')
+    assert cost.value == pytest.approx(100.0 * (4.5 / 3.5 - 1.0))   # 28.57 %
+    assert 'RTF difference 1.00' in cost.detail
+    assert cross_on.value == cross_off.value == pytest.approx(16.6)  # mm
+    assert cross_off.detail.endswith('identical in every run')
+    differs = cost_rows([1.0], [1.0], [0.0166], [0.0167])[-1]
+    assert differs.detail.endswith('DIFFERS between runs')
+
+
+@pytest.mark.slow
+def test_one_run_each_way():
+    """The demo once with, once without the viewer's nodes, and once with the relay (~70 s)."""
+    rows = {row.what: row for row in visualisation_benchmark(1, view=True)}
+    assert rows['RMS cross-track, visualisation on'].value == \
+        rows['RMS cross-track, visualisation off'].value
+    assert rows['RMS cross-track, visualisation on'].value == pytest.approx(16.6, abs=0.05)
+    assert rows['view relay throughput'].value > 0.0
+    assert rows['relay /odom'].value == 1601              # 32 s at 50 Hz, and the first
+    assert rows['relay /odom'].detail == 'recorded 1601, lost 0'
