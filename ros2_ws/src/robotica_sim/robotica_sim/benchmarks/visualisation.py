@@ -64,29 +64,39 @@ def spread_row(what: str, values: list[float], unit: str, detail: str) -> Measur
                           f'spread {max(values) - min(values):.2f}')
 
 
-def cost_rows(rtf_on: list[float], rtf_off: list[float], cross_on: list[float],
-              cross_off: list[float]) -> list[MeasurementRow]:
+def cost_rows(on: list[dict], off: list[dict]) -> list[MeasurementRow]:
     """
-    Return the rows of the with/without comparison.
+    Return the rows of the with/without comparison from the runs' ``--json`` summaries.
 
     The added cost is the wall time per simulated second with TF and markers over the time
-    without, minus one: ``median(off) / median(on) - 1``. The cross-track is in mm.
+    without, minus one: ``median(off) / median(on) - 1``. The cross-track is in mm, with each
+    run's value and its lockstep timeouts (a timeout lets the simulator step without a late
+    node's answer: the result may change, with or without the viewer).
     """
-    on, off = statistics.median(rtf_on), statistics.median(rtf_off)
-    same = len(set(cross_on + cross_off)) == 1
+    def values(runs: list[dict], key: str) -> list[float]:
+        return [float(run[key]) for run in runs]
+
+    rtf_on, rtf_off = values(on, 'real_time_factor'), values(off, 'real_time_factor')
+    median_on, median_off = statistics.median(rtf_on), statistics.median(rtf_off)
+    same = len(set(values(on + off, 'rms_cross_track'))) == 1
+
+    def cross_track(runs: list[dict], setting: str, note: str = '') -> MeasurementRow:
+        return MeasurementRow(
+            f'RMS cross-track, visualisation {setting}',
+            1e3 * statistics.median(values(runs, 'rms_cross_track')), 'mm',
+            ', '.join(f'{run["rms_cross_track"]:.6f} m' for run in runs)
+            + '; lockstep timeouts ' + ', '.join(str(run['lockstep_timeouts']) for run in runs)
+            + note)
+
     return [
         spread_row('demo RTF, visualisation on', rtf_on, '×',
                    'state_publisher, markers, /tf of odometry and simulator'),
         spread_row('demo RTF, visualisation off', rtf_off, '×', 'visualisation: false'),
-        MeasurementRow('added wall time of TF and markers', 100.0 * (off / on - 1.0), '%',
-                       f'median RTF off / on - 1 ({off:.2f} / {on:.2f}); RTF difference '
-                       f'{off - on:.2f}'),
-        MeasurementRow('RMS cross-track, visualisation on', 1e3 * statistics.median(cross_on),
-                       'mm', ', '.join(f'{v:.6f} m' for v in cross_on)),
-        MeasurementRow('RMS cross-track, visualisation off',
-                       1e3 * statistics.median(cross_off), 'mm',
-                       ', '.join(f'{v:.6f} m' for v in cross_off)
-                       + ('; identical in every run' if same else '; DIFFERS between runs')),
+        MeasurementRow('added wall time of TF and markers', 100.0 * (median_off / median_on - 1.0),
+                       '%', f'median RTF off / on - 1 ({median_off:.2f} / {median_on:.2f}); RTF '
+                       f'difference {median_off - median_on:.2f}'),
+        cross_track(on, 'on'),
+        cross_track(off, 'off', '; identical in every run' if same else '; DIFFERS between runs'),
     ]
 
 
@@ -144,11 +154,7 @@ def visualisation_benchmark(count: int = 3, view: bool = True,
                 runs[on].append(demo_run(Path(tmp) / f'{k}-{on}',
                                          SCENARIO if on else str(off_file)))
 
-        def values(key: str, on: bool) -> list[float]:
-            return [float(run[key]) for run in runs[on]]
-
-        rows = cost_rows(values('real_time_factor', True), values('real_time_factor', False),
-                         values('rms_cross_track', True), values('rms_cross_track', False))
+        rows = cost_rows(runs[True], runs[False])
         if view:
             if progress:
                 progress('demo with --view')
