@@ -138,14 +138,30 @@ def demo_run(run_dir: Path, scenario: str = SCENARIO, view: bool = False) -> dic
     return json.loads(proc.stdout)
 
 
+def scenario_off(directory: Path) -> Path:
+    """Write the demo with ``visualisation: false`` into ``directory``; return its file."""
+    path = directory / f'{SCENARIO}.yaml'
+    path.write_text(resolve_scenario_path(SCENARIO).read_text() + '\nvisualisation: false\n')
+    return path
+
+
+def relay_run(run_dir: Path) -> list[MeasurementRow]:
+    """Run the demo with ``--view`` into ``run_dir``; return the relay's rows and the RTF."""
+    summary = demo_run(run_dir, view=True)
+    forwarded = parse_relay_summary((run_dir / 'logs' / 'view_relay.log').read_text())
+    recorded = {t.name: t.count for t in bag_info(run_dir / 'bag').topics}
+    wall = summary['duration'] / summary['real_time_factor']
+    return relay_rows(forwarded, recorded, wall) + [
+        MeasurementRow('demo RTF with --view', summary['real_time_factor'], '×',
+                       'visualisation on and the relay (no client connected)')]
+
+
 def visualisation_benchmark(count: int = 3, view: bool = True,
                             progress: Optional[Callable[[str], None]] = None
                             ) -> list[MeasurementRow]:
     """Run the demo ``count`` times each way, interleaved, then once with ``--view``."""
     with tempfile.TemporaryDirectory() as tmp:
-        off_file = Path(tmp) / f'{SCENARIO}.yaml'
-        off_file.write_text(resolve_scenario_path(SCENARIO).read_text()
-                            + '\nvisualisation: false\n')
+        off_file = scenario_off(Path(tmp))
         runs: dict[bool, list[dict]] = {True: [], False: []}
         for k in range(count):
             for on in (True, False):
@@ -153,17 +169,9 @@ def visualisation_benchmark(count: int = 3, view: bool = True,
                     progress(f'demo {k + 1}/{count}, visualisation {"on" if on else "off"}')
                 runs[on].append(demo_run(Path(tmp) / f'{k}-{on}',
                                          SCENARIO if on else str(off_file)))
-
         rows = cost_rows(runs[True], runs[False])
         if view:
             if progress:
                 progress('demo with --view')
-            run_dir = Path(tmp) / 'view'
-            summary = demo_run(run_dir, view=True)
-            forwarded = parse_relay_summary((run_dir / 'logs' / 'view_relay.log').read_text())
-            recorded = {t.name: t.count for t in bag_info(run_dir / 'bag').topics}
-            wall = summary['duration'] / summary['real_time_factor']
-            rows += relay_rows(forwarded, recorded, wall)
-            rows.append(MeasurementRow('demo RTF with --view', summary['real_time_factor'], '×',
-                                       'visualisation on and the relay (no client connected)'))
+            rows += relay_run(Path(tmp) / 'view')
     return rows
