@@ -92,7 +92,7 @@ def test_run_with_view_relays_odom_during_the_run(ros_node, spin, tmp_path):
     run = robotica('run', 'demo', '--duration', '2', '--view', '--port', str(port), '--quiet',
                    '--output-dir', str(tmp_path / 'run'))
     try:
-        with connection(port, executor, spin) as ws:
+        with connection(port, executor, spin, timeout=60.0) as ws:   # the run starts first
             client = FoxgloveClient(ws)
 
             def odom_advertised() -> bool:

@@ -48,9 +48,9 @@ def odometry(k: int) -> Odometry:
     return msg
 
 
-def connection(port: int, executor, spin):
+def connection(port: int, executor, spin, timeout: float = 10.0):
     """Return a connection to the relay on ``port``, retried while its process starts."""
-    deadline = time.monotonic() + 10.0
+    deadline = time.monotonic() + timeout
     while True:   # the port opens when the relay is built
         try:
             return connect(f'ws://127.0.0.1:{port}', subprotocols=[SUBPROTOCOL],
