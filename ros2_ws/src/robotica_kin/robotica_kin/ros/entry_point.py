@@ -54,9 +54,9 @@ def run_node(factory: Callable[[], Node], args: Optional[list[str]] = None,
             code = run(node, executor)
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
-    except RCLError:   # a call racing the shutdown of SIGINT/SIGTERM: not an error then
-        if node is None or node.context.ok():
-            raise
+    except (RCLError, RuntimeError):   # a call racing the shutdown of SIGINT/SIGTERM, while
+        if rclpy.ok():                    # the node is built or spins (EventsExecutor raises
+            raise                         # "Unable to convert call argument"): not an error
     finally:
         if node is not None:
             node.destroy_node()
