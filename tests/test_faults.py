@@ -73,7 +73,7 @@ def clock(ros_context):
 def start_run(run_dir: Path) -> subprocess.Popen:
     return subprocess.Popen(
         ['robotica', 'run', 'demo', '--pacing', 'realtime', '--duration', str(DURATION),
-         '--output-dir', str(run_dir), '--json', '--quiet'],
+         '--visualisation', 'off', '--output-dir', str(run_dir), '--json', '--quiet'],
         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
 
 

@@ -6,6 +6,7 @@ counter-clockwise); times are float seconds. Used by the nodes of every robotica
 """
 from collections import Counter
 import math
+import struct
 from typing import Sequence
 
 from builtin_interfaces.msg import Duration, Time
@@ -37,6 +38,19 @@ def seconds(sec: int, nanosec: int) -> float:
     if not 0 <= nanosec < NANOSECONDS_PER_SECOND:
         raise ValueError(f'stamp nanosec must be in [0, 1e9), got {nanosec} (sec {sec})')
     return sec + nanosec * 1e-9
+
+
+def header_stamp(data: bytes) -> float:
+    """
+    Return the stamp [s] that opens a serialized message, or raise ValueError.
+
+    The message's first field is a std_msgs/Header (its stamp first) or a
+    builtin_interfaces/Time (rosgraph_msgs/Clock). ``data`` is CDR with its 4-byte encapsulation
+    header (byte 1: 1 little-, 0 big-endian); the stamp's ``int32 sec`` and ``uint32 nanosec``
+    follow it. Reading it costs about a microsecond, against some 20 for deserializing.
+    """
+    sec, nanosec = struct.unpack_from('<iI' if data[1] == 1 else '>iI', data, 4)
+    return seconds(sec, nanosec)
 
 
 def stamp_to_seconds(stamp: Time | Duration) -> float:

@@ -9,6 +9,7 @@ the node running. Ctrl-C (SIGINT) and SIGTERM end the process with code 0 (STYLE
 shutdown).
 """
 import sys
+import time
 from typing import Callable, Optional
 
 import rclpy
@@ -18,6 +19,8 @@ from rclpy.executors import Executor, ExternalShutdownException, SingleThreadedE
 from rclpy.node import Node
 from rclpy.signals import SignalHandlerOptions
 
+SIGNAL_SHUTDOWN_GRACE = 2.0   # [s] wall clock: rclpy's shutdown after a signal comes by then
+
 
 def _spin_forever(node: Node, executor: Executor) -> int:
     # A loop of spin_once, not executor.spin(): rclpy Jazzy's EventsExecutor.spin() busy-loops
@@ -26,6 +29,24 @@ def _spin_forever(node: Node, executor: Executor) -> int:
     while rclpy.ok(context=node.context):
         executor.spin_once(timeout_sec=0.5)
     return 0
+
+
+def _shut_down_by_signal(grace: float = SIGNAL_SHUTDOWN_GRACE) -> bool:
+    """
+    Return whether rclpy shuts down within ``grace`` [s, wall clock] (SIGINT or SIGTERM came).
+
+    rclpy's signal handler shuts the contexts down from a thread of its own, a moment after the
+    signal; in between, a call into the executor or the node can already fail. The
+    EventsExecutor raises ``RuntimeError: Unable to convert call argument`` when the Python
+    KeyboardInterrupt of SIGINT lands while it converts a callback's argument, and rclpy is
+    then still "ok" for a few milliseconds (seen in 2 of some 60 SIGINTs under load).
+    """
+    deadline = time.monotonic() + grace
+    while rclpy.ok():
+        if time.monotonic() > deadline:
+            return False
+        time.sleep(0.01)
+    return True
 
 
 def run_node(factory: Callable[[], Node], args: Optional[list[str]] = None,
@@ -54,9 +75,9 @@ def run_node(factory: Callable[[], Node], args: Optional[list[str]] = None,
             code = run(node, executor)
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
-    except (RCLError, RuntimeError):   # a call racing the shutdown of SIGINT/SIGTERM, while
-        if rclpy.ok():                    # the node is built or spins (EventsExecutor raises
-            raise                         # "Unable to convert call argument"): not an error
+    except (RCLError, RuntimeError):   # a call racing the shutdown of SIGINT/SIGTERM while
+        if not _shut_down_by_signal():    # the node is built or spins: not an error
+            raise
     finally:
         if node is not None:
             node.destroy_node()

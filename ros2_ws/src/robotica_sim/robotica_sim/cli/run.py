@@ -50,9 +50,9 @@ CALL_RETRY = 2.0     # [s] wall clock, see _call
 SAFE_STOP = 1.0      # [s] simulated after a node died: the simulator's cmd_timeout 0.5 s + 0.5
 SAFE_STOP_WALL = 5.0     # [s] wall clock, the longest wait for that stop
 MIN_TIMEOUT = 1.0        # [s] wall clock: a shorter wait cannot cover one start of the nodes
-STOP_ORDER = ['simulator', 'path_tracker', 'joint_controller', 'odometry', 'encoder_emulator',
-              'gyro_emulator', 'compass_emulator', 'gps_emulator', 'path_publisher',
-              'joint_trajectory_publisher', 'recorder']
+WATCH_PERIOD = 0.1   # [s] wall clock between two looks at the run (clock, progress, faults)
+STOP_FIRST = ['simulator']   # no step without its controllers; then every other node at once
+STOP_LAST = ['recorder']     # it records what the others publish until they stop
 
 
 class RunFailed(Exception):
@@ -104,6 +104,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="override the scenario's pacing")
     parser.add_argument('--duration', type=real(0.0, 1e7, low_open=True), default=None,
                         help="override the scenario's duration [s, simulated]")
+    parser.add_argument('--visualisation', choices=['on', 'off'], default=None,
+                        help="override the scenario's visualisation: off leaves out the state "
+                        'publisher and the markers node and publishes no /tf (a quarter less '
+                        'CPU; docs/benchmarks.md)')
     parser.add_argument('--domain-id', type=domain_id, default=None,
                         help='ROS_DOMAIN_ID of the run, 0-232 (above 101 with a warning: see '
                         'docs/scenarios.md) (default: $ROS_DOMAIN_ID, else random)')
@@ -160,8 +164,8 @@ def _prepare(args: argparse.Namespace, scenario, plan: list[NodeSpec],
                      {'host': args.host, 'port': args.port}, use_sim_time=False)
     nodes = [recorder] + plan + ([relay] if args.view else [])
     # What ran, as run (the recorder stores it in the bag: robotica_sim.bags.run_record).
-    overrides = {k: v for k, v in (('pacing', args.pacing), ('duration', args.duration))
-                 if v is not None}
+    overrides = {k: v for k, v in (('pacing', args.pacing), ('duration', args.duration),
+                                   ('visualisation', args.visualisation)) if v is not None}
     run_file.write_text(yaml.safe_dump({
         'scenario': scenario.name, 'seed': scenario.seed, 'pacing': scenario.pacing,
         'duration': scenario.duration, 'step_period': scenario.step_period,
@@ -333,7 +337,10 @@ def _simulate(args, scenario, plan: list[NodeSpec], run_dir: Path,
         others = [n for n in names if n != 'simulator']
         fault = None    # the first node that died: (name, code), and when the run ends for it
         while supervisor.returncode('simulator') is None:
-            executor.spin_once(timeout_sec=0.1)
+            # Ten looks a second: the newest /clock waits in its keep-last-1 queue. Spinning on
+            # every /clock cost this process 9 s of CPU in a 30-s run of 3000 steps.
+            time.sleep(WATCH_PERIOD)
+            executor.spin_once(timeout_sec=0.0)
             _progress(args, sim_time[0], scenario.duration)
             if fault is None:
                 fault = _died(supervisor, others)
@@ -368,8 +375,9 @@ def main(args: argparse.Namespace) -> int:
     """Run the scenario; return the exit code."""
     # Every error of the scenario and its plan (a law, a shape, a gain) before anything starts;
     # a ScenarioError is one line and exit 2 (robotica_sim.cli.main).
-    scenario = with_overrides(load_scenario(args.scenario), pacing=args.pacing,
-                              duration=args.duration)
+    scenario = with_overrides(
+        load_scenario(args.scenario), pacing=args.pacing, duration=args.duration,
+        visualisation=None if args.visualisation is None else args.visualisation == 'on')
     plan = plan_run(scenario)
     domain = args.domain_id
     if domain is None:
@@ -404,7 +412,7 @@ def main(args: argparse.Namespace) -> int:
         print('\nrobotica run: interrupted; stopping the nodes', file=sys.stderr)
         code, ended = 130, 'interrupted (Ctrl-C or SIGTERM)'
     finally:
-        codes = supervisor.stop_all(STOP_ORDER)
+        codes = supervisor.stop_all(STOP_FIRST, STOP_LAST)
         rclpy.try_shutdown()
     faults = _faults(supervisor)
     if faults and ended == COMPLETED:

@@ -18,12 +18,18 @@ Crash safety: what was received is written to disk every ``flush_period`` s; aft
 ``max_bag_duration`` split the bag into several files.
 
 Service ``~/ready`` (std_srvs/Trigger) answers success once every requested topic is subscribed
-and matched to a publisher. On SIGINT/SIGTERM the node drains what DDS already delivered, then
+and matched to a publisher. Topic ``~/progress`` (std_msgs/Header) carries, every
+``progress_period`` s of wall clock while it advances, the newest ``/clock`` time recorded: a
+lockstep simulator follows it (``lockstep.follow_topics``), so that a run never outruns its
+recording. Without that, a 1 kHz arm run on two cores shared with other work outran the
+recorder by more than its subscription depth, and DDS silently dropped 314 of 10 001 joint
+states before they reached it. On SIGINT/SIGTERM the node drains what DDS already delivered, then
 closes the bag.
 """
 from pathlib import Path
 import shutil
 import signal
+import struct
 import time
 
 from rclpy.clock import Clock, ClockType
@@ -31,14 +37,17 @@ from rclpy.event_handler import QoSMessageLostInfo, SubscriptionEventCallbacks
 from rclpy.experimental import EventsExecutor
 from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
 from rclpy.signals import SignalHandlerOptions
+from robotica_kin.ros.convert import header_stamp, seconds_to_stamp
 from robotica_kin.ros.entry_point import run_node
 from robotica_kin.ros.guarded import GuardedNode
 from robotica_kin.ros.parameters import declare
+from robotica_kin.ros.qos import STREAM_PUB_QOS
 from robotica_sim.bags.metadata import qos_to_dict
 from robotica_sim.bags.run_record import PUBLISHERS_KEY
 from robotica_sim.bags.typestore import ensure_type, jazzy_typestore, message_class
 from robotica_sim.bags.writer import BagWriter, COMPRESSION
 from robotica_sim.runs.software_versions import software_versions
+from std_msgs.msg import Header
 from std_srvs.srv import Trigger
 import yaml
 
@@ -78,6 +87,9 @@ class RecorderNode(GuardedNode):
         period = declare(self, 'discovery_period', 0.1,
                          'Period of the search for new topics [s, wall clock]',
                          low=0.01, high=10.0, read_only=True)
+        progress_period = declare(self, 'progress_period', 0.05,
+                                  'Period of ~/progress, the newest /clock time recorded [s, '
+                                  'wall clock]', low=0.001, high=10.0, read_only=True)
         if not output:
             raise ValueError('parameter output (the bag directory) is required')
         if compression not in COMPRESSION:
@@ -107,6 +119,9 @@ class RecorderNode(GuardedNode):
         self._count = 0
         self._last_message = time.monotonic()
         self.create_service(Trigger, '~/ready', self._on_ready)
+        self._progress_pub = self.create_publisher(Header, '~/progress', STREAM_PUB_QOS)
+        self._clock_recorded = self._progress_sent = -1.0   # [s] newest /clock recorded, sent
+        self.create_timer(progress_period, self._publish_progress, clock=wall)
         # Wall-clock timer: discovery goes on even before any /clock arrives.
         self.create_timer(period, self._discover, clock=wall)
         self.get_logger().info(f'recording into {output}: '
@@ -118,7 +133,8 @@ class RecorderNode(GuardedNode):
         for topic, types in self.get_topic_names_and_types():
             if topic in self._recorded or (self._topics and topic not in self._topics):
                 continue
-            if not self._topics and topic.endswith('/_action/status'):
+            if not self._topics and (topic.endswith('/_action/status')
+                                     or topic == self._progress_pub.topic_name):
                 continue
             publishers = self.get_publishers_info_by_topic(topic)
             if not publishers:
@@ -157,13 +173,20 @@ class RecorderNode(GuardedNode):
             self._count += 1
             self._last_message = time.monotonic()
 
+        def write_clock(data: bytes) -> None:
+            write(data)
+            try:   # the newest, not the largest: one stray stamp must not stick
+                self._clock_recorded = header_stamp(data)
+            except (ValueError, IndexError, struct.error):   # malformed: recorded, not followed
+                pass
+
         def lost(info: QoSMessageLostInfo) -> None:
             self._lost[topic] = int(info.total_count)
             self.get_logger().warn(f'{topic}: {info.total_count} messages lost before they '
                                    'reached the recorder', throttle_duration_sec=1.0)
 
         self._recorded[topic] = self.create_subscription(
-            msg_class, topic, write, qos, raw=True,
+            msg_class, topic, write_clock if topic == '/clock' else write, qos, raw=True,
             event_callbacks=SubscriptionEventCallbacks(message_lost=lost))
         self.get_logger().info(f'recording {topic} [{msgtype}]')
 
@@ -180,6 +203,12 @@ class RecorderNode(GuardedNode):
             seen |= names
             self._writer.set_custom_data(PUBLISHERS_KEY, yaml.safe_dump(
                 {t: sorted(n) for t, n in sorted(self._publishing_nodes.items())}))
+
+    def _publish_progress(self) -> None:
+        """Publish the newest /clock time recorded, when it has changed."""
+        if self._clock_recorded != self._progress_sent and self._clock_recorded >= 0.0:
+            self._progress_sent = self._clock_recorded
+            self._progress_pub.publish(Header(stamp=seconds_to_stamp(self._clock_recorded)))
 
     def _receive_time(self) -> int:
         """Return the receive time [ns]: simulated with use_sim_time, else the system clock."""

@@ -32,13 +32,12 @@ At ``end_time`` the node publishes a final status and exits with code 0.
 """
 from abc import abstractmethod
 import math
-import struct
 import time
 
 from rclpy.clock import Clock as WallClock, ClockType
 from rclpy.duration import Duration
 from rclpy.executors import Executor
-from robotica_kin.ros.convert import seconds, seconds_to_stamp
+from robotica_kin.ros.convert import header_stamp, seconds_to_stamp
 from robotica_kin.ros.guarded import GuardedNode
 from robotica_kin.ros.parameters import declare
 from robotica_kin.ros.qos import STREAM_PUB_QOS, STREAM_REPLAY_SUB_QOS
@@ -49,17 +48,6 @@ from std_srvs.srv import Trigger
 
 PACING_MODES = ('realtime', 'lockstep')
 FOLLOW_DISCOVERY_PERIOD = 0.1   # [s, wall clock] search for the followed topics' types
-
-
-def header_stamp(data: bytes) -> float:
-    """
-    Return the header stamp [s] of a serialized message whose first field is a std_msgs/Header.
-
-    ``data`` is CDR with its 4-byte encapsulation header (byte 1: 1 little-, 0 big-endian); the
-    stamp's ``int32 sec`` and ``uint32 nanosec`` follow it.
-    """
-    sec, nanosec = struct.unpack_from('<iI' if data[1] == 1 else '>iI', data, 4)
-    return seconds(sec, nanosec)
 
 
 class SteppedSimulatorNode(GuardedNode):

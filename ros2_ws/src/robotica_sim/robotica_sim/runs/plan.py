@@ -41,6 +41,7 @@ PATH_SHAPES = ('straight_line', 'circle', 'rounded_rectangle', 'figure_eight', '
 MAX_PATH_POINTS = 200_000   # of a reference path (one nav_msgs/Path message)
 TRACKER_NODE_KEYS = ('pose_source', 'max_cross_track')   # tracker: keys that are not gains
 STATUS_TOPIC = '/simulator/status'
+RECORDER_PROGRESS_TOPIC = '/recorder/progress'   # the newest /clock recorded (std_msgs/Header)
 TRACKING_ERROR_TOPIC = '/path_tracker/tracking_error'
 CONTROLLER_STATE_TOPIC = '/joint_controller/controller_state'
 TRAJECTORY_TOPIC = '/joint_controller/joint_trajectory'
@@ -186,15 +187,18 @@ def recorded_topics(scenario: Scenario) -> tuple[str, ...]:
 
 def followed_topics(scenario: Scenario) -> tuple[str, ...]:
     """
-    Return the topics a lockstep vehicle simulator waits for (``lockstep.follow_topics``).
+    Return the topics a lockstep simulator waits for (``lockstep.follow_topics``).
 
-    They are the per-step outputs of the nodes off its control loop: the encoder, gyro and
-    compass emulators and the odometry.
+    They are the per-step outputs of the nodes off its control loop: the recorder's progress
+    (the recorder the caller adds is named ``recorder``), so that no run outruns its recording,
+    and for a vehicle the encoder, gyro and compass emulators and the odometry.
 
     The GPS emulator is not followed: its fixes come at a few hertz, late by their latency, and
     stop in dropouts; the odometry it feeds is followed.
     """
-    topics = ['/wheel_encoders', '/odom']
+    if scenario.is_manipulator:
+        return (RECORDER_PROGRESS_TOPIC,)
+    topics = [RECORDER_PROGRESS_TOPIC, '/wheel_encoders', '/odom']
     topics += [topic for sensor, topic in (('gyro', '/imu/data'),
                                            ('compass', '/compass/heading'))
                if getattr(scenario.sensors, sensor).enabled]
@@ -287,6 +291,7 @@ def _plan_arm(scenario: Scenario) -> list[NodeSpec]:
              for key, value in scenario.controller.gains.items()}
     simulator = {**plant, 'gravity': _floats(arm.gravity), 'step_period': scenario.step_period,
                  'pacing': scenario.pacing, 'end_time': scenario.duration, 'autostart': False,
+                 'lockstep.follow_topics': list(followed_topics(scenario)),
                  'respect_limits': arm.respect_limits}
     for key in ('initial_positions', 'initial_velocities', 'tau_max', 'unmodelled_viscous'):
         if getattr(arm, key):

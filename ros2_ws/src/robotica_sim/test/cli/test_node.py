@@ -5,7 +5,9 @@ import signal
 import subprocess
 import sys
 
+from nav_msgs.msg import Path as PathMessage
 import pytest
+from robotica_kin.ros.qos import LATCHED_QOS
 from robotica_sim.cli.main import run_verb
 
 ROBOTICA = [sys.executable, '-m', 'robotica_sim.cli.main']
@@ -70,10 +72,12 @@ def test_the_node_replaces_the_command_with_its_arguments_and_local_discovery(
          '__node:=my_path', '-p', 'x:=[0.0,4.0]', '-p', 'y:=[0.0,1.0]'],
         stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env)
     try:
-        def named() -> bool:
-            return 'my_path' in node.get_node_names()
-
-        assert spin(executor, named, timeout=30.0)
+        # The node is in the graph before it has published: wait for its path, so that the
+        # signal comes after the log line this test reads.
+        paths = []
+        node.create_subscription(PathMessage, 'path', paths.append, LATCHED_QOS)
+        assert spin(executor, lambda: bool(paths) and 'my_path' in node.get_node_names(),
+                    timeout=30.0)
         # The same process (exec), now the node's executable with the arguments as given.
         cmdline = Path(f'/proc/{proc.pid}/cmdline').read_bytes().split(b'\0')[:-1]
         assert cmdline[-7:] == [b'--ros-args', b'-r', b'__node:=my_path', b'-p',

@@ -396,7 +396,14 @@ def test_the_simulator_follows_the_per_step_outputs_off_its_loop(tmp_path):
     """)
     nodes = {n.name: n for n in plan_run(load_scenario(path))}
     followed = nodes['simulator'].parameters['lockstep.follow_topics']
-    assert followed == ['/wheel_encoders', '/odom', '/imu/data']   # not the few-hertz GPS
+    assert followed == ['/recorder/progress', '/wheel_encoders', '/odom',
+                        '/imu/data']   # not the few-hertz GPS
     published = {'/wheel_encoders': 'encoder_emulator', '/odom': 'odometry',
                  '/imu/data': 'gyro_emulator'}
     assert all(name in nodes for name in published.values())
+
+
+def test_an_arm_simulator_follows_the_recording_only():
+    scenario = load_scenario(str(SHIPPED / 'puma_computed_torque.yaml'))
+    nodes = {n.name: n for n in plan_run(scenario)}
+    assert nodes['simulator'].parameters['lockstep.follow_topics'] == ['/recorder/progress']

@@ -1,8 +1,9 @@
-"""Tests of the stepped simulator's helpers that need no running node."""
+"""Tests of the conversions between messages and values that the docstrings do not show."""
 from nav_msgs.msg import Odometry
 from rclpy.serialization import serialize_message
+from robotica_kin.ros.convert import header_stamp
 from robotica_msgs.msg import WheelEncoders
-from robotica_sim.nodes.stepped_simulator import header_stamp
+from rosgraph_msgs.msg import Clock
 
 
 def test_the_header_stamp_is_read_from_the_serialized_message():
@@ -19,3 +20,9 @@ def test_a_big_endian_message_is_read_too():
     # CDR big endian: encapsulation 00 00, options 00 00, then sec = 3, nanosec = 5e8
     data = bytes([0, 0, 0, 0]) + (3).to_bytes(4, 'big') + (500_000_000).to_bytes(4, 'big')
     assert header_stamp(data) == 3.5
+
+
+def test_a_clock_is_read_as_its_time():
+    clock = Clock()
+    clock.clock.sec, clock.clock.nanosec = 7, 250_000_000
+    assert header_stamp(serialize_message(clock)) == 7.25
