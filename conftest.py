@@ -32,20 +32,6 @@ if WORKERS > 1:   # tests that run on the session's domain (no ros_domain fixtur
 _domains = itertools.count(os.getpid() % 40)
 
 
-def pytest_collection_modifyitems(items) -> None:
-    """
-    Keep the end-to-end runs (``slow``) on one worker of ``pytest -n``, one after another.
-
-    Two whole runs at once on two cores starve each other: a 1 kHz arm run's recorder lost ten
-    /joint_torques messages of 10 001, and a real-time fault run's tracker did not catch up
-    after SIGCONT. With ``--dist loadgroup`` they share one worker while the other takes the
-    unit and node tests.
-    """
-    for item in items:
-        if item.get_closest_marker('slow'):
-            item.add_marker(pytest.mark.xdist_group('end_to_end'))
-
-
 @pytest.fixture
 def ros_domain(monkeypatch):
     """Give the test a fresh ROS domain of this process's own and loopback-only discovery."""
