@@ -157,18 +157,35 @@ class _Rewriter:
         return target, topic
 
 
+FOOTER = struct.Struct('<BQQQI')   # opcode 0x02, length 20, summary start, offset start, CRC
+FOOTER_OPCODE = 0x02
+
+
 def _finished(path: Path) -> bool:
-    """Return whether the MCAP file ``path`` ends with the magic bytes (it has its footer)."""
+    """
+    Return whether the MCAP file ``path`` is closed: magic, a footer record, magic.
+
+    The footer's opcode, its length (20) and a summary start inside the file are checked: a
+    file that only ends with the magic bytes (random bytes, a file glued from pieces) is not
+    closed, and ``robotica bag repair`` takes what it can of it.
+    """
     if not path.is_file():   # never open a FIFO (it blocks) or a device
         return False
     try:
         with open(path, 'rb') as stream:
-            if stream.seek(0, os.SEEK_END) < 2 * len(MCAP_MAGIC):
+            size = stream.seek(0, os.SEEK_END)
+            if size < 2 * len(MCAP_MAGIC) + FOOTER.size:
                 return False
-            stream.seek(-len(MCAP_MAGIC), os.SEEK_END)
-            return stream.read() == MCAP_MAGIC
+            stream.seek(0)
+            head = stream.read(len(MCAP_MAGIC))
+            stream.seek(-(FOOTER.size + len(MCAP_MAGIC)), os.SEEK_END)
+            tail = stream.read()
     except OSError:
         return False
+    opcode, length, summary_start, _, _ = FOOTER.unpack_from(tail)
+    return (head == MCAP_MAGIC and tail[FOOTER.size:] == MCAP_MAGIC
+            and opcode == FOOTER_OPCODE and length == FOOTER.size - 9
+            and summary_start < size)
 
 
 def partial_reason(bag: str | Path) -> str:

@@ -10,7 +10,7 @@ import sys
 
 import pytest
 from robotica_sim.bags.info import bag_info, BagError
-from robotica_sim.bags.repair import needs_repair, repair_bag, RepairError
+from robotica_sim.bags.repair import needs_repair, partial_reason, repair_bag, RepairError
 from robotica_sim.bags.typestore import jazzy_typestore
 from robotica_sim.bags.writer import BagWriter
 from rosbags.highlevel import AnyReader
@@ -140,3 +140,16 @@ def test_the_command_repairs_and_reports(tmp_path):
     again = subprocess.run(command + [str(bag)], capture_output=True, text=True, timeout=60)
     assert again.returncode == 1 and 'nothing to repair' in again.stderr
     assert 'Traceback' not in again.stderr
+
+
+def test_a_file_that_only_ends_with_the_magic_bytes_is_not_closed(tmp_path):
+    bag = killed_bag(tmp_path / 'bag', flushed=5, unflushed=0)
+    repair_bag(bag)
+    assert partial_reason(bag) == ''
+    (mcap,) = bag.glob('*.mcap')
+    data = bytearray(mcap.read_bytes())
+    data[-(8 + 29)] = 0x0F   # the footer's opcode (29 bytes before the closing magic bytes)
+    mcap.write_bytes(bytes(data))
+    assert partial_reason(bag) == f'{mcap.name} cut short (no MCAP footer)'
+    mcap.write_bytes(bytes(data[:8]) + os.urandom(5000) + bytes(data[-8:]))
+    assert partial_reason(bag) == f'{mcap.name} cut short (no MCAP footer)'
