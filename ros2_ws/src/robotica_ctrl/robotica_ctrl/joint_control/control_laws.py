@@ -49,6 +49,11 @@ JOINT_LAW_PARAMETERS: dict[str, dict[str, ParameterSpec]] = {
 """The gains of each law by name (the node's parameters ``<law>.<gain>``); each 1 or n values."""
 FIRST_PERIOD = ParameterSpec(1e-3, 'dt [s] of the first step (no previous state yet)', 1e-6, 1.0)
 """The joint controller's ``first_period``: the sample period before a second state."""
+MAX_PERIOD = ParameterSpec(
+    1.0, 'Longest gap between two states that is integrated [s]; a longer one resets the law '
+    '(its integrals) as a new start', 1e-6, 3600.0)
+"""The joint controller's ``max_period``: one stamp gap of 1000 s wound a PID integral up by
+1000 s of error (any gap under the stamp gate's 3600 s was integrated)."""
 
 
 def make_joint_law(law: str, model: DHModel | ArrayLike, gains: Mapping[str, Any],

@@ -31,7 +31,7 @@ import numpy as np
 from rclpy.experimental import EventsExecutor
 from robotica_ctrl.joint_control import JointControlLaw, JointReference, JointState
 from robotica_ctrl.joint_control.control_laws import (FIRST_PERIOD, JOINT_LAW_PARAMETERS,
-                                                      JOINT_LAWS, make_joint_law)
+                                                      JOINT_LAWS, make_joint_law, MAX_PERIOD)
 from robotica_ctrl.trajectory.sampled_trajectory import SampledTrajectory
 from robotica_kin.bounds import bounded_array, MAX_JOINT_POSITION, MAX_JOINT_VELOCITY, StampGate
 from robotica_kin.ros.convert import joint_state_values, seconds_to_stamp, stamp_to_seconds
@@ -62,7 +62,8 @@ class JointControllerNode(GuardedNode):
         use_friction = declare(self, 'use_friction', True,
                                "Compensate the model's friction F̂ (computed_torque)",
                                read_only=True)
-        self._first_period = declare_specs(self, {'first_period': FIRST_PERIOD})['first_period']
+        periods = declare_specs(self, {'first_period': FIRST_PERIOD, 'max_period': MAX_PERIOD})
+        self._first_period, self._max_period = periods['first_period'], periods['max_period']
         prefix = f'{self._law_name}.'
         gains = {name.removeprefix(prefix): value for name, value in declare_specs(
             self, {prefix + k: v for k, v in JOINT_LAW_PARAMETERS.get(self._law_name, {}).items()}
@@ -145,6 +146,11 @@ class JointControllerNode(GuardedNode):
         if self._previous_time is not None and t < self._previous_time:
             self.get_logger().warn(f'time went back from {self._previous_time:.3f} s to '
                                    f'{t:.3f} s: controller reset')
+            self._law.reset()
+            self._previous_time = None
+        if self._previous_time is not None and t - self._previous_time > self._max_period:
+            self.get_logger().warn(f'joint_states gap of {t - self._previous_time:.3f} s > '
+                                   f'max_period {self._max_period:g} s: controller reset')
             self._law.reset()
             self._previous_time = None
         dt = self._first_period if self._previous_time is None or t == self._previous_time \

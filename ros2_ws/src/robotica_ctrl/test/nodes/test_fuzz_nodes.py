@@ -132,6 +132,31 @@ def test_a_state_stamped_far_ahead_is_not_integrated(start_node, ros_node, spin)
     assert proc.poll() is None
 
 
+def test_a_stamp_gap_beyond_max_period_resets_the_integral(start_node, ros_node, spin,
+                                                           read_output):
+    # Issue 16 leftover: a gap of 1000 s passes the stamp gate (3600 s) and was integrated:
+    # K_i = 10, an error of 0.05 rad over 1000 s gave 500 N m on every joint.
+    node, executor = ros_node
+    proc = start_node('robotica_ctrl', 'joint_controller', '-p', 'law:=pid',
+                      '-p', 'pid.ki:=[10.0]')
+    received, ok = fuzz(
+        node, executor, {'joint_states': (JointState, _joint_state)},
+        {'joint_torques': Float64MultiArray,
+         '/joint_controller/controller_state': JointControllerState},
+        lambda got: len(got['/joint_controller/controller_state']) > 5, random.Random(0),
+        count=0)
+    assert ok
+    pub = node.create_publisher(JointState, 'joint_states', 10)
+    assert spin(executor, lambda: pub.get_subscription_count() > 0)
+    pub.publish(_stamped(JointState(name=PUMA_JOINTS, position=[0.05] * 6,
+                                    velocity=[0.0] * 6), 1100.0))
+    states = received['/joint_controller/controller_state']
+    assert spin(executor, lambda: states[-1].header.stamp.sec == 1100)   # answered
+    assert max(abs(v) for v in states[-1].effort) < 100.0
+    assert 'joint_states gap of' in read_output(proc) and 'controller reset' in read_output(proc)
+    assert proc.poll() is None
+
+
 def test_a_refused_path_keeps_the_previous_one(start_node, ros_node, spin, read_output):
     # Campaign of issue 16: a refused path (here empty) made the tracker drop the path it had
     # and stop for good, since a run's path is published once (latched).
