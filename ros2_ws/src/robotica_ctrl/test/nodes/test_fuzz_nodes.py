@@ -106,9 +106,8 @@ def test_a_state_whose_torques_overflow_is_not_answered(start_node, ros_node, sp
     assert proc.poll() is None
 
 
-def test_a_state_stamped_far_ahead_is_not_integrated(start_node, ros_node, spin):
-    # Campaign of issue 16: with K_i = 10, one state stamped 1e6 s after the previous one was
-    # integrated over 1e6 s and answered with 5e5 N m on every joint (5e8 N m at 1e9 s).
+def _answering_pid(start_node, ros_node, spin):
+    """Start a PID joint controller with K_i = 10 that answers; return it, what it sent, a pub."""
     node, executor = ros_node
     proc = start_node('robotica_ctrl', 'joint_controller', '-p', 'law:=pid',
                       '-p', 'pid.ki:=[10.0]')
@@ -121,12 +120,23 @@ def test_a_state_stamped_far_ahead_is_not_integrated(start_node, ros_node, spin)
     assert ok
     pub = node.create_publisher(JointState, 'joint_states', 10)
     assert spin(executor, lambda: pub.get_subscription_count() > 0)
+    return proc, received, pub
+
+
+def _offset_state(t: float) -> JointState:
+    """Return a state 0.05 rad from the held one on every joint, stamped ``t`` [s]."""
+    return _stamped(JointState(name=PUMA_JOINTS, position=[0.05] * 6, velocity=[0.0] * 6), t)
+
+
+def test_a_state_stamped_far_ahead_is_not_integrated(start_node, ros_node, spin):
+    # Campaign of issue 16: with K_i = 10, one state stamped 1e6 s after the previous one was
+    # integrated over 1e6 s and answered with 5e5 N m on every joint (5e8 N m at 1e9 s).
+    proc, received, pub = _answering_pid(start_node, ros_node, spin)
     for t in (1e6, 1e9):
-        pub.publish(_stamped(JointState(name=PUMA_JOINTS, position=[0.05] * 6,
-                                        velocity=[0.0] * 6), 100.0 + t))
+        pub.publish(_offset_state(100.0 + t))
     pub.publish(_joint_state(200.0))   # answered after the two above: they were handled
     states = received['/joint_controller/controller_state']
-    assert spin(executor, lambda: states[-1].header.stamp.sec == 200)
+    assert spin(ros_node[1], lambda: states[-1].header.stamp.sec == 200)
     assert all(m.header.stamp.sec < 1e6 for m in states)   # the far ones not answered
     assert max(abs(v) for m in received['joint_torques'] for v in m.data) < 100.0
     assert proc.poll() is None
@@ -135,23 +145,11 @@ def test_a_state_stamped_far_ahead_is_not_integrated(start_node, ros_node, spin)
 def test_a_stamp_gap_beyond_max_period_resets_the_integral(start_node, ros_node, spin,
                                                            read_output):
     # Issue 16 leftover: a gap of 1000 s passes the stamp gate (3600 s) and was integrated:
-    # K_i = 10, an error of 0.05 rad over 1000 s gave 500 N m on every joint.
-    node, executor = ros_node
-    proc = start_node('robotica_ctrl', 'joint_controller', '-p', 'law:=pid',
-                      '-p', 'pid.ki:=[10.0]')
-    received, ok = fuzz(
-        node, executor, {'joint_states': (JointState, _joint_state)},
-        {'joint_torques': Float64MultiArray,
-         '/joint_controller/controller_state': JointControllerState},
-        lambda got: len(got['/joint_controller/controller_state']) > 5, random.Random(0),
-        count=0)
-    assert ok
-    pub = node.create_publisher(JointState, 'joint_states', 10)
-    assert spin(executor, lambda: pub.get_subscription_count() > 0)
-    pub.publish(_stamped(JointState(name=PUMA_JOINTS, position=[0.05] * 6,
-                                    velocity=[0.0] * 6), 1100.0))
+    # K_i = 10, an error of 0.05 rad over 1000 s gave 501 N m on every joint.
+    proc, received, pub = _answering_pid(start_node, ros_node, spin)
+    pub.publish(_offset_state(1100.0))
     states = received['/joint_controller/controller_state']
-    assert spin(executor, lambda: states[-1].header.stamp.sec == 1100)   # answered
+    assert spin(ros_node[1], lambda: states[-1].header.stamp.sec == 1100)   # answered
     assert max(abs(v) for v in states[-1].effort) < 100.0
     assert 'joint_states gap of' in read_output(proc) and 'controller reset' in read_output(proc)
     assert proc.poll() is None
