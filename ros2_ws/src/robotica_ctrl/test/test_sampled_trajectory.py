@@ -7,8 +7,8 @@ import math
 
 import numpy as np
 import pytest
-
 from robotica_ctrl.trajectory.sampled_trajectory import SampledTrajectory
+from scipy.interpolate import BPoly
 
 
 def test_cubic_rest_to_rest_matches_10_89():
@@ -72,3 +72,20 @@ def test_bad_samples_are_refused(args, match):
 def test_non_finite_time_is_refused():
     with pytest.raises(ValueError, match='finite'):
         SampledTrajectory([0.0, 1.0], [[0.0], [1.0]]).sample(math.nan)
+
+
+@pytest.mark.parametrize('orders', [1, 2, 3], ids=['linear', 'cubic', 'quintic'])
+def test_every_interval_matches_scipys_hermite_polynomials(orders):
+    # Independent: scipy's BPoly.from_derivatives builds the same Hermite interpolant, one
+    # interval at a time, on uneven intervals and random derivatives.
+    rng = np.random.default_rng(7)
+    times = np.cumsum(rng.uniform(0.01, 0.5, 60))
+    columns = [rng.normal(size=(60, 3)) for _ in range(orders)]
+    trajectory = SampledTrajectory(times, *columns)
+    derivatives = np.stack(columns, axis=-1)
+    reference = [BPoly.from_derivatives(times, derivatives[:, j]) for j in range(3)]
+    for t in rng.uniform(times[0], times[-1], 200):
+        sampled = trajectory.sample(t)
+        for order, value in enumerate((sampled.q_d, sampled.qd_d, sampled.qdd_d)):
+            expected = [poly(t, order) for poly in reference]
+            np.testing.assert_allclose(value, expected, rtol=1e-9, atol=1e-9 * 10 ** order)
