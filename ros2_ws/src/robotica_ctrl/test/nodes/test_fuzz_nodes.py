@@ -11,10 +11,11 @@ import math
 import random
 
 from builtin_interfaces.msg import Duration
-from geometry_msgs.msg import PoseStamped, Twist
+from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry, Path
+import numpy as np
 import pytest
-from robotica_kin.ros.convert import seconds_to_stamp
+from robotica_kin.ros.convert import path_message, seconds_to_stamp
 from robotica_kin.ros.hostile import fuzz
 from robotica_kin.ros.qos import LATCHED_QOS
 from robotica_msgs.msg import JointControllerState, TrackingError
@@ -50,13 +51,7 @@ def _odom(t):
 
 
 def _path(t):
-    path = Path()
-    path.header.frame_id = 'odom'
-    for i in range(101):
-        pose = PoseStamped()
-        pose.pose.position.x = 0.1 * i
-        path.poses.append(pose)
-    return path
+    return path_message(np.column_stack([0.1 * np.arange(101), np.zeros(101)]), 'odom')
 
 
 CASES = {

@@ -6,12 +6,14 @@ so its cross-track error is +0.5 m and pure pursuit turns it right (negative yaw
 """
 import math
 
-from geometry_msgs.msg import PoseStamped, Twist, TwistStamped
+from geometry_msgs.msg import Twist, TwistStamped
 from nav_msgs.msg import Odometry, Path
+import numpy as np
 import pytest
 from rcl_interfaces.msg import Parameter, ParameterType, ParameterValue
 from rcl_interfaces.srv import SetParameters
 from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
+from robotica_kin.ros.convert import path_message
 from robotica_msgs.msg import TrackingError, VehicleCommand
 
 pytestmark = pytest.mark.ros
@@ -31,13 +33,8 @@ def _odom(x, y, theta, frame='odom'):
 
 
 def _straight_path():
-    path = Path()
-    path.header.frame_id = 'odom'
-    for i in range(101):
-        pose = PoseStamped()
-        pose.pose.position.x = 0.1 * i
-        path.poses.append(pose)
-    return path
+    """Return 101 poses along x, 0.1 m apart, in odom."""
+    return path_message(np.column_stack([0.1 * np.arange(101), np.zeros(101)]), 'odom')
 
 
 @pytest.fixture
