@@ -235,6 +235,9 @@ class SteppedSimulatorNode(GuardedNode):
                     f'no command on {self._command_topic} within {self._start_timeout} s: is a '
                     'controller running and connected? Stopping.')
                 return 1
+            # The real-time factor is that of the steps: the waits above (discovery, whole
+            # seconds of lockstep.timeout) are not part of them.
+            self._wall_start = time.monotonic()
         else:
             self._publish_state()
         while self._end_time == 0.0 or self.sim_time < self._end_time - 1e-9:
