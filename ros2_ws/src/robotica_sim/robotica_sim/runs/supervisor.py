@@ -2,9 +2,9 @@
 Start, watch and stop the node processes of a run; none is left behind.
 
 Each node runs in its own session (Ctrl-C in the terminal reaches only the supervising
-command, which then stops the nodes in order) and asks the kernel for SIGTERM if the supervisor
-dies (``PR_SET_PDEATHSIG``), so that no node outlives a killed run. Output goes to one log file
-per node.
+command, which then stops the nodes: :meth:`ProcessSupervisor.stop_all`) and asks the kernel
+for SIGTERM if the supervisor dies (``PR_SET_PDEATHSIG``), so that no node outlives a killed
+run. Output goes to one log file per node.
 
 Faults are told apart: :meth:`ProcessSupervisor.died` names the processes that ended on their own
 (a crash, a kill), :meth:`ProcessSupervisor.watch` notes those found stopped (SIGSTOP, a
