@@ -31,7 +31,8 @@ import threading
 from types import FrameType, ModuleType
 from typing import NoReturn, Optional
 
-VERBS = ('run', 'info', 'play', 'grade', 'report', 'bag', 'bench', 'view', 'node', 'params')
+VERBS = ('run', 'info', 'play', 'grade', 'report', 'export', 'bag', 'bench', 'view', 'node',
+         'params')
 """The verbs, each a module of this package (imported when the command line is parsed)."""
 EXIT_INTERRUPTED = 130
 IMPORT_RETRY = 0.05   # [s] after which a signal deferred by an extension's import comes again
@@ -58,10 +59,11 @@ def one_line(text: str) -> str:
 
 def usage_errors() -> tuple[type[Exception], ...]:
     """Return the error classes that are a bad argument or input (exit 2)."""
+    from robotica_sim.bags.export import ExportError
     from robotica_sim.bags.player import SelectionError
     from robotica_sim.grading.rubric import RubricError
     from robotica_sim.runs.scenario import ScenarioError
-    return ScenarioError, RubricError, SelectionError
+    return ScenarioError, RubricError, SelectionError, ExportError
 
 
 def failure_errors() -> tuple[type[Exception], ...]:
