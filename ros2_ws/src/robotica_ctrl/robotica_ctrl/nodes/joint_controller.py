@@ -131,6 +131,25 @@ class JointControllerNode(GuardedNode):
             self._trajectory_start = t
         return self._trajectory.sample(t - self._trajectory_start)
 
+    def _restart_reason(self, t: float) -> str:
+        """
+        Return why the state stamped ``t`` [s] starts the law anew, '' when it continues it.
+
+        A restart of the time (one stamp of 1e6 s gave 5e5 N m of PID torque), a time that
+        goes back, or a gap longer than ``max_period`` (a gap of 1000 s, integrated, gave
+        501 N m): the integrals must not span it.
+        """
+        if self._stamps.check(t) == 'restart':
+            return f'joint_states time restarted at {t:.3f} s'
+        if self._previous_time is None:
+            return ''
+        if t < self._previous_time:
+            return f'time went back from {self._previous_time:.3f} s to {t:.3f} s'
+        if t - self._previous_time > self._max_period:
+            return (f'joint_states gap of {t - self._previous_time:.3f} s > max_period '
+                    f'{self._max_period:g} s')
+        return ''
+
     # -- the control step -----------------------------------------------------------------
     def _on_joint_states(self, msg: JointStateMsg) -> None:
         # Refused (missing, repeated or non-finite joints, beyond the bounds, a stamp that jumps):
@@ -139,18 +158,9 @@ class JointControllerNode(GuardedNode):
         bounded_array('joint positions', q, MAX_JOINT_POSITION)
         bounded_array('joint velocities', qd, MAX_JOINT_VELOCITY)
         t = stamp_to_seconds(msg.header.stamp)
-        if self._stamps.check(t) == 'restart':   # one stamp of 1e6 s gave 5e5 N m of PID torque
-            self.get_logger().warn(f'joint_states time restarted at {t:.3f} s: controller reset')
-            self._law.reset()
-            self._previous_time = None
-        if self._previous_time is not None and t < self._previous_time:
-            self.get_logger().warn(f'time went back from {self._previous_time:.3f} s to '
-                                   f'{t:.3f} s: controller reset')
-            self._law.reset()
-            self._previous_time = None
-        if self._previous_time is not None and t - self._previous_time > self._max_period:
-            self.get_logger().warn(f'joint_states gap of {t - self._previous_time:.3f} s > '
-                                   f'max_period {self._max_period:g} s: controller reset')
+        reason = self._restart_reason(t)
+        if reason:
+            self.get_logger().warn(f'{reason}: controller reset')
             self._law.reset()
             self._previous_time = None
         dt = self._first_period if self._previous_time is None or t == self._previous_time \

@@ -98,11 +98,8 @@ def flatten(msg: Any, prefix: str = '') -> dict[str, Any]:
             continue
         value = getattr(msg, name)
         key = prefix + name
-        if _is_message(value):
-            if value.__msgtype__ in _TIME_TYPES:
-                row[key] = value.sec + value.nanosec * 1e-9
-            else:
-                row.update(flatten(value, key + '.'))
+        if _is_message(value):   # a Time or Duration comes back as {key: seconds}
+            row.update(flatten(value, key + '.'))
         elif isinstance(value, np.ndarray) and value.ndim == 1 and value.dtype.kind in 'biuf' \
                 and value.size <= MAX_EXPANDED:
             row.update({f'{key}.{i}': v for i, v in enumerate(value.tolist())})

@@ -20,7 +20,6 @@ from typing import Callable, Optional
 
 from robotica_sim.bags.info import bag_info
 from robotica_sim.benchmarks.measurement_row import MeasurementRow
-from robotica_sim.runs.scenario import resolve_scenario_path
 
 SCENARIO = 'demo'
 SUMMARY_PREFIX = 'forwarded '
@@ -126,9 +125,10 @@ def relay_rows(forwarded: dict[str, int], recorded: dict[str, int],
     return rows
 
 
-def demo_run(run_dir: Path, scenario: str = SCENARIO, view: bool = False) -> dict:
-    """Run ``robotica run <scenario>`` into ``run_dir``; return its JSON summary."""
-    command = ['robotica', 'run', scenario, '--output-dir', str(run_dir), '--json', '--quiet']
+def demo_run(run_dir: Path, visualisation: bool = True, view: bool = False) -> dict:
+    """Run ``robotica run demo`` into ``run_dir``; return its JSON summary."""
+    command = ['robotica', 'run', SCENARIO, '--output-dir', str(run_dir), '--json', '--quiet',
+               '--visualisation', 'on' if visualisation else 'off']
     if view:
         command += ['--view', '--port', str(VIEW_PORT)]
     proc = subprocess.run(command, capture_output=True, text=True, env=dict(os.environ),
@@ -136,13 +136,6 @@ def demo_run(run_dir: Path, scenario: str = SCENARIO, view: bool = False) -> dic
     if proc.returncode != 0:
         raise RuntimeError(f'robotica run failed ({proc.returncode}): {proc.stderr.strip()}')
     return json.loads(proc.stdout)
-
-
-def scenario_off(directory: Path) -> Path:
-    """Write the demo with ``visualisation: false`` into ``directory``; return its file."""
-    path = directory / f'{SCENARIO}.yaml'
-    path.write_text(resolve_scenario_path(SCENARIO).read_text() + '\nvisualisation: false\n')
-    return path
 
 
 def relay_run(run_dir: Path) -> list[MeasurementRow]:
@@ -161,14 +154,12 @@ def visualisation_benchmark(count: int = 3, view: bool = True,
                             ) -> list[MeasurementRow]:
     """Run the demo ``count`` times each way, interleaved, then once with ``--view``."""
     with tempfile.TemporaryDirectory() as tmp:
-        off_file = scenario_off(Path(tmp))
         runs: dict[bool, list[dict]] = {True: [], False: []}
         for k in range(count):
             for on in (True, False):
                 if progress:
                     progress(f'demo {k + 1}/{count}, visualisation {"on" if on else "off"}')
-                runs[on].append(demo_run(Path(tmp) / f'{k}-{on}',
-                                         SCENARIO if on else str(off_file)))
+                runs[on].append(demo_run(Path(tmp) / f'{k}-{on}', visualisation=on))
         rows = cost_rows(runs[True], runs[False])
         if view:
             if progress:

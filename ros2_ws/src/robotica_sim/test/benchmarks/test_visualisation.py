@@ -7,7 +7,7 @@ one short end-to-end benchmark (slow) checks that the viewer's nodes leave the r
 import pytest
 from robotica_sim.bags.info import bag_info
 from robotica_sim.benchmarks.visualisation import (cost_rows, demo_run, parse_relay_summary,
-                                                   relay_rows, relay_run, scenario_off)
+                                                   relay_rows, relay_run)
 
 LOG = """\
 [INFO] [1795594627.008542480] [view_relay]: relaying /robot_description [std_msgs/msg/String]
@@ -84,7 +84,7 @@ def test_relay_run_and_a_run_without_the_viewer(tmp_path):
     in_bag = {topic: int(rows[f'relay {topic}'].detail.split(',')[0].split()[1])
               for topic in ('/odom', '/tf')}
     assert in_bag['/odom'] in (1601, 1602) and in_bag['/tf'] in (4803, 4806)
-    off = demo_run(tmp_path / 'off', str(scenario_off(tmp_path)))
+    off = demo_run(tmp_path / 'off', visualisation=False)
     assert off['rms_cross_track'] == pytest.approx(0.016551, abs=1e-4)
     recorded = {topic.name for topic in bag_info(tmp_path / 'off' / 'bag').topics}
     assert '/odom' in recorded
