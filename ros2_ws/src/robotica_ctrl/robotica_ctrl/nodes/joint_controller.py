@@ -62,6 +62,10 @@ class JointControllerNode(GuardedNode):
         use_friction = declare(self, 'use_friction', True,
                                "Compensate the model's friction F̂ (computed_torque)",
                                read_only=True)
+        self._wait_for_trajectory = declare(
+            self, 'wait_for_trajectory', False,
+            'Answer no state before a trajectory arrives (a lockstep run: its simulator repeats '
+            'step 0 until answered); false: hold the first state meanwhile', read_only=True)
         periods = declare_specs(self, {'first_period': FIRST_PERIOD, 'max_period': MAX_PERIOD})
         self._first_period, self._max_period = periods['first_period'], periods['max_period']
         prefix = f'{self._law_name}.'
@@ -158,6 +162,10 @@ class JointControllerNode(GuardedNode):
         bounded_array('joint positions', q, MAX_JOINT_POSITION)
         bounded_array('joint velocities', qd, MAX_JOINT_VELOCITY)
         t = stamp_to_seconds(msg.header.stamp)
+        if self._trajectory is None and self._wait_for_trajectory:
+            self.get_logger().info('waiting for a trajectory: state not answered',
+                                   throttle_duration_sec=1.0)
+            return
         reason = self._restart_reason(t)
         if reason:
             self.get_logger().warn(f'{reason}: controller reset')

@@ -117,6 +117,21 @@ def test_a_trajectory_without_our_joints_is_refused(start_node, ros_node, spin, 
     np.testing.assert_allclose(torques[-1].data, [0.0] * 6, atol=1e-12)   # holds q
 
 
+def test_waiting_for_a_trajectory_answers_no_state_before_it(start_node, ros_node, spin,
+                                                             publish, read_output):
+    # A lockstep run's controller got its trajectory 0.14 s after the steps began and held
+    # q = 0 meanwhile: with wait_for_trajectory it answers nothing until the trajectory.
+    proc, executor, joint_states, trajectory, torques, states = _controller(
+        start_node, ros_node, spin, '-p', 'law:=pid', '-p', 'wait_for_trajectory:=true')
+    joint_states.publish(_state(PUMA_JOINTS, [0.2] * 6, [0.0] * 6))
+    assert spin(executor, lambda: 'waiting for a trajectory' in read_output(proc))
+    assert not torques
+    trajectory.publish(_constant_trajectory(PUMA_JOINTS, [0.5] * 6))
+    assert publish(executor, joint_states, _state(PUMA_JOINTS, [0.2] * 6, [0.0] * 6, t=2.0),
+                   lambda: states)
+    np.testing.assert_allclose(states[-1].reference_position, [0.5] * 6)
+
+
 @pytest.mark.parametrize('arguments, reason', [
     (('-p', 'law:=lqr'), 'law must be one of'),
     (('-p', 'robot:=planar_rr'), 'no dynamic parameters'),

@@ -322,7 +322,8 @@ def _plan_arm(scenario: Scenario) -> list[NodeSpec]:
         NodeSpec('robotica_ctrl', 'joint_controller', 'joint_controller', {
             'law': law, **model, 'gravity': _floats(arm.gravity),
             'use_friction': scenario.controller.use_friction,
-            'first_period': scenario.step_period, **gains}, use_sim_time=False),
+            'first_period': scenario.step_period, 'wait_for_trajectory': True,
+            **gains}, use_sim_time=False),
         NodeSpec('robotica_sim', 'arm_simulator', 'simulator', simulator, use_sim_time=False),
         NodeSpec('robotica_kin', 'state_publisher', 'state_publisher',
                  {**_arm_description(plant), **STATE_PUBLISHER_INPUT}, use_sim_time=False),
