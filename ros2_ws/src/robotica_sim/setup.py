@@ -13,6 +13,7 @@ setup(
         ('share/' + package_name, ['package.xml']),
         ('share/' + package_name + '/scenarios', glob('scenarios/*.yaml')),
         ('share/' + package_name + '/rubrics', glob('rubrics/*.yaml')),
+        ('share/' + package_name + '/templates', glob('templates/*')),
     ],
     install_requires=['setuptools'],
     zip_safe=True,

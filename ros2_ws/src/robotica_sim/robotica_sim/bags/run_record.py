@@ -36,7 +36,8 @@ RUN_KEY = 'robotica.run.yaml'
 SCENARIO_KEY = 'robotica.scenario.yaml'
 PUBLISHERS_KEY = 'robotica.publishers'
 SETTINGS = ('seed', 'pacing', 'duration', 'step_period')
-ROBOTICA = 'robotica'
+ROBOTICA = 'robotica'   # started_by of robotica's own nodes
+USER = 'user'           # started_by of a user's command in a role of the run
 COMPLETED = 'completed'   # how a run that reached its end time ended
 # Topics every node publishes: they do not tell what a node did in the run.
 GRAPH_TOPICS = ('/rosout', '/parameter_events')
@@ -49,14 +50,16 @@ class RunNode:
     One node of a run: its name, who started it, its command and the topics it published.
 
     ``started_by`` is ``'robotica'`` for a node ``robotica run`` started (``command`` is
-    its ``<package>/<executable>``) and ``''`` for any other (a user's node, or every node of a
-    bag recorded by hand).
+    its ``<package>/<executable>``), ``'user'`` for a user's command that ``robotica run``
+    started in a ``role`` of the scenario (docs/your_node.md), and ``''`` for any other (a
+    node of the user's own, or every node of a bag recorded by hand).
     """
 
     name: str
     started_by: str = ''
     command: str = ''
     topics: tuple[str, ...] = ()
+    role: str = ''
 
 
 @dataclass(frozen=True)
@@ -76,8 +79,8 @@ class RunRecord:
     def foreign_nodes(self) -> tuple[RunNode, ...]:
         """Return the nodes not started by ``robotica run`` that published a run topic."""
         return tuple(n for n in self.nodes
-                     if n.started_by != ROBOTICA and any(t not in GRAPH_TOPICS
-                                                         for t in n.topics))
+                     if n.started_by not in (ROBOTICA, USER)
+                     and any(t not in GRAPH_TOPICS for t in n.topics))
 
     def lines(self) -> list[tuple[str, str]]:
         """
@@ -116,7 +119,11 @@ class RunRecord:
         ours = [n.name for n in self.nodes if n.started_by == ROBOTICA]
         if ours:
             out.append(('Nodes', f'{", ".join(ours)} (started by robotica run)'))
-        others = [n for n in self.nodes if n.started_by != ROBOTICA]
+        for node in (n for n in self.nodes if n.started_by == USER):
+            out.append(('' if ours else 'Nodes',
+                        f"{node.name}: the user's {node.role or 'node'}, started by robotica "
+                        f'run ({node.command})'))
+        others = [n for n in self.nodes if n.started_by not in (ROBOTICA, USER)]
         for i, node in enumerate(others):
             topics = [t for t in node.topics if t not in GRAPH_TOPICS]
             out.append(('' if ours or i else 'Nodes',
@@ -175,7 +182,8 @@ def run_record(custom: dict[str, str]) -> RunRecord:
             name = _name(entry['name'])
             nodes.append(RunNode(name, str(entry.get('started_by', ROBOTICA)),
                                  str(entry.get('command', '')),
-                                 tuple(sorted(published.pop(name, ())))))
+                                 tuple(sorted(published.pop(name, ()))),
+                                 str(entry.get('role', ''))))
     nodes += [RunNode(name, '', '', tuple(sorted(topics)))
               for name, topics in sorted(published.items())]
     source = run if run else scenario

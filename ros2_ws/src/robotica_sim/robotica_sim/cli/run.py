@@ -12,6 +12,7 @@ import json
 import os
 from pathlib import Path
 import random
+import shlex
 import shutil
 import signal
 import sys
@@ -23,13 +24,16 @@ import rclpy
 from rclpy.executors import SingleThreadedExecutor
 from rclpy.qos import QoSProfile, ReliabilityPolicy
 from rclpy.signals import SignalHandlerOptions
+from robotica_kin.mobile.vehicles import STEERED_TYPES
 from robotica_sim.bags.info import BagError
 from robotica_sim.bags.repair import partial_reason, repair_command
-from robotica_sim.bags.run_record import COMPLETED, record_end
+from robotica_sim.bags.run_record import COMPLETED, record_end, ROBOTICA, USER
+from robotica_sim.cli.contract_watch import ContractWatch
 from robotica_sim.cli.options import domain_id, domain_warning, nonempty, path, real
 from robotica_sim.cli.view import add_host_port
 from robotica_sim.grading.summary import summarize_bag
-from robotica_sim.runs.plan import NodeSpec, plan_run, recorded_topics
+from robotica_sim.runs.plan import (external_roles, NodeSpec, optional_topics, plan_run,
+                                    recorded_topics)
 from robotica_sim.runs.scenario import load_scenario, with_overrides
 from robotica_sim.runs.supervisor import child_environment, ProcessSupervisor
 from rosgraph_msgs.msg import Clock
@@ -143,7 +147,8 @@ def _executable(spec: NodeSpec) -> str:
 
 
 def _argv(spec: NodeSpec, params_file: Path) -> list[str]:
-    argv = [_executable(spec), '--ros-args', '-r', f'__node:={spec.name}',
+    """Return the command line of a node: its executable, or a user's command, and ROS args."""
+    argv = [*(spec.command or [_executable(spec)]), '--ros-args', '-r', f'__node:={spec.name}',
             '--params-file', str(params_file)]
     for source, target in spec.remappings.items():
         argv += ['-r', f'{source}:={target}']
@@ -159,6 +164,7 @@ def _prepare(args: argparse.Namespace, scenario, plan: list[NodeSpec],
     shutil.copy(scenario.source, scenario_copy)
     recorder = NodeSpec('robotica_sim', 'recorder', 'recorder', {
         'output': str(bag), 'topics': list(recorded_topics(scenario)),
+        'optional_topics': list(optional_topics(scenario)) or [''],
         'metadata_files': [str(scenario_copy), str(params_file), str(run_file)]})
     relay = NodeSpec('robotica_sim', 'view_relay', 'view_relay',
                      {'host': args.host, 'port': args.port}, use_sim_time=False)
@@ -172,9 +178,11 @@ def _prepare(args: argparse.Namespace, scenario, plan: list[NodeSpec],
         'overrides': overrides, 'domain_id': int(os.environ['ROS_DOMAIN_ID']),
         'scenario_file': str(scenario.source),
         'started': time.strftime('%Y-%m-%dT%H:%M:%S%z'),
-        'nodes': [{'name': 'robotica_run', 'started_by': 'robotica', 'command': 'robotica run'}]
-        + [{'name': spec.name, 'started_by': 'robotica',
-            'command': f'{spec.package}/{spec.executable}'} for spec in nodes]},
+        'nodes': [{'name': 'robotica_run', 'started_by': ROBOTICA, 'command': 'robotica run'}]
+        + [{'name': spec.name, 'started_by': USER, 'role': spec.role,
+            'command': shlex.join(spec.command), 'cwd': spec.cwd} if spec.command
+           else {'name': spec.name, 'started_by': ROBOTICA,
+                 'command': f'{spec.package}/{spec.executable}'} for spec in nodes]},
         sort_keys=False))
     params = {}
     for spec in nodes:
@@ -229,21 +237,30 @@ def _died(supervisor: ProcessSupervisor, names: list[str]) -> Optional[tuple[str
     return next(iter(dead.items())) if dead else None
 
 
-def _death(supervisor: ProcessSupervisor, name: str, code: int) -> RunFailed:
-    return RunFailed(f'node {name} {_exit_text(code)} before the end:\n' + supervisor.tail(name))
+def _death(supervisor: ProcessSupervisor, name: str, code: int,
+           watch: Optional[ContractWatch] = None, sim_time: Optional[float] = None
+           ) -> RunFailed:
+    who = (watch.label(name) if watch else None) or f'node {name}'
+    when = '' if sim_time is None else f' at t = {sim_time:.2f} s'
+    return RunFailed(f'{who} {_exit_text(code)}{when} before the end:\n' + supervisor.tail(name))
 
 
-def _check_alive(supervisor: ProcessSupervisor, names: list[str]) -> None:
+def _check_alive(supervisor: ProcessSupervisor, names: list[str],
+                 watch: Optional[ContractWatch] = None) -> None:
     dead = _died(supervisor, names)
     if dead:
-        raise _death(supervisor, *dead)
+        raise _death(supervisor, *dead, watch=watch)
 
 
-def _wait_ready(args, executor, node, supervisor, names, published) -> None:
-    deadline = time.monotonic() + args.discovery_timeout
+def _wait_ready(args, executor, node, supervisor, names, published, watch) -> None:
+    started = time.monotonic()
+    deadline = started + args.discovery_timeout
     ready = node.create_client(Trigger, '/recorder/ready')
     while True:
-        _check_alive(supervisor, names)
+        _check_alive(supervisor, names, watch)
+        broken = watch.unpublished(time.monotonic() - started)
+        if broken:
+            raise RunFailed(broken)
         answer = _call(executor, ready, deadline)
         if answer.success:
             _wait_for_graph(args, executor, node, names, published)
@@ -313,7 +330,10 @@ def _simulate(args, scenario, plan: list[NodeSpec], run_dir: Path,
     nodes = _prepare(args, scenario, plan, run_dir)
     names = [spec.name for spec in nodes]
     for spec in nodes:
-        supervisor.start(spec.name, _argv(spec, run_dir / 'params.yaml'))
+        try:
+            supervisor.start(spec.name, _argv(spec, run_dir / 'params.yaml'), cwd=spec.cwd)
+        except OSError as err:   # a user's command removed since the plan checked it
+            raise RunFailed(f'cannot start {spec.label}: {err.strerror or err}') from None
     _log(args, f'started {len(nodes)} nodes (domain {os.environ["ROS_DOMAIN_ID"]}), '
                'waiting for discovery')
     node = rclpy.create_node('robotica_run')
@@ -324,9 +344,13 @@ def _simulate(args, scenario, plan: list[NodeSpec], run_dir: Path,
     node.create_subscription(
         Clock, '/clock', lambda m: sim_time.__setitem__(0, m.clock.sec + m.clock.nanosec * 1e-9),
         QoSProfile(depth=1, reliability=ReliabilityPolicy.BEST_EFFORT))
+    watch = ContractWatch(node, nodes, scenario.robot.type in STEERED_TYPES,
+                          {role.name: spec.answer_timeout
+                           for role, spec in external_roles(scenario)})
     try:
         _wait_ready(args, executor, node, supervisor, names,
-                    set(recorded_topics(scenario)) - {'/clock'})
+                    set(recorded_topics(scenario)) - {'/clock'} - set(optional_topics(scenario)),
+                    watch)
         _call(executor, node.create_client(Trigger, '/simulator/start'),
               time.monotonic() + args.discovery_timeout)
         _log(args, f'running {scenario.name}: {scenario.duration} s simulated, '
@@ -343,8 +367,12 @@ def _simulate(args, scenario, plan: list[NodeSpec], run_dir: Path,
             executor.spin_once(timeout_sec=0.0)
             _progress(args, sim_time[0], scenario.duration)
             if fault is None:
+                broken = watch.failure(sim_time[0], start)
+                if broken:   # the simulator has braked (a NaN) or holds its step: end now
+                    raise RunFailed(broken)
                 fault = _died(supervisor, others)
                 if fault is not None:
+                    fault_time = sim_time[0]
                     if fault[0] == 'recorder':
                         raise _death(supervisor, *fault)
                     # Let the simulator go on a little: on a stale command it stops the robot,
@@ -357,7 +385,10 @@ def _simulate(args, scenario, plan: list[NodeSpec], run_dir: Path,
             if time.monotonic() - start > timeout:
                 raise RunFailed(f'the run took longer than {timeout:g} s wall clock')
         if fault is not None:
-            raise _death(supervisor, *fault)
+            raise _death(supervisor, *fault, watch=watch, sim_time=fault_time)
+        broken = watch.failure(sim_time[0], start, running=False)
+        if broken:
+            raise RunFailed(broken)
         wall = time.monotonic() - start
         if not args.quiet and sys.stderr.isatty():
             print(file=sys.stderr)

@@ -17,9 +17,10 @@ Crash safety: what was received is written to disk every ``flush_period`` s; aft
 ``robotica bag repair`` makes the bag readable up to then. ``max_bag_size`` and
 ``max_bag_duration`` split the bag into several files.
 
-Service ``~/ready`` (std_srvs/Trigger) answers success once every requested topic is subscribed
-and matched to a publisher. Topic ``~/progress`` (std_msgs/Header) carries, every
-``progress_period`` s of wall clock while it advances, the newest ``/clock`` time recorded: a
+Service ``~/ready`` (std_srvs/Trigger) answers success once every requested topic (but those of
+``optional_topics``) is subscribed and matched to a publisher. Topic ``~/progress``
+(std_msgs/Header) carries, every ``progress_period`` s of wall clock while it advances, the
+newest ``/clock`` time recorded: a
 lockstep simulator follows it (``lockstep.follow_topics``), so that a run never outruns its
 recording. Without that, a 1 kHz arm run on two cores shared with other work outran the
 recorder by more than its subscription depth, and DDS silently dropped 314 of 10 001 joint
@@ -68,6 +69,10 @@ class RecorderNode(GuardedNode):
                                     'Topics to record; [""] or []: every topic discovered',
                                     read_only=True))
         self._topics = [t for t in self._topics if t]
+        self._optional = {t for t in declare(
+            self, 'optional_topics', [''],
+            'Topics of "topics" that ~/ready does not wait for (an optional output of a '
+            "user's node: recorded when it is published)", read_only=True) if t}
         compression = declare(self, 'compression', 'zstd',
                               f'MCAP chunk compression: one of {sorted(COMPRESSION)}',
                               read_only=True)
@@ -218,8 +223,8 @@ class RecorderNode(GuardedNode):
 
     def _on_ready(self, request: Trigger.Request, response: Trigger.Response
                   ) -> Trigger.Response:
-        waiting = [t for t in self._topics if t not in self._recorded
-                   or self._recorded[t].get_publisher_count() == 0]
+        waiting = [t for t in self._topics if t not in self._optional and (
+            t not in self._recorded or self._recorded[t].get_publisher_count() == 0)]
         response.success = not waiting and bool(self._recorded)
         response.message = ('recording ' + ', '.join(sorted(self._recorded))
                             if response.success

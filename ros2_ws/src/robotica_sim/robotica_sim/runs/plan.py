@@ -15,7 +15,11 @@ exits with code 1 after the others have started.
 from dataclasses import dataclass, field, replace
 import inspect
 import math
-from typing import Any, Callable, Mapping
+import os
+from pathlib import Path
+import re
+import shutil
+from typing import Any, Callable, Mapping, Optional
 
 import numpy as np
 from robotica_ctrl.joint_control.control_laws import FIRST_PERIOD, make_joint_law
@@ -28,7 +32,8 @@ from robotica_kin.mobile.odometry_fusion import ODOMETRY_PARAMETERS
 from robotica_kin.mobile.vehicles import GEOMETRY_PARAMETERS, STEERED_TYPES, vehicle_kinematics
 from robotica_kin.parameter_specs import check_parameters, ParameterError
 from robotica_kin.robots import puma560, robot_by_name, two_link_arm
-from robotica_sim.runs.scenario import Scenario, ScenarioError
+from robotica_sim.runs.roles import Role, role_contract, ROLE_SECTIONS, topic_name
+from robotica_sim.runs.scenario import ExternalSpec, Scenario, ScenarioError
 from robotica_sim.sensors.compass import compass_params
 from robotica_sim.sensors.encoder import encoder_params
 from robotica_sim.sensors.gps import gps_configuration, gps_preset
@@ -91,6 +96,25 @@ class NodeSpec:
     parameters: dict = field(default_factory=dict)
     remappings: dict = field(default_factory=dict)
     use_sim_time: bool = True
+    command: tuple[str, ...] = ()      # a user's node: its argv (package, executable: '')
+    cwd: Optional[str] = None          # the folder it runs in (the scenario's)
+    role: str = ''                     # a user's node: its role (runs.roles.ROLES)
+
+    @property
+    def label(self) -> str:
+        """
+        Return how a run's messages name the node: its script for a user's command.
+
+        >>> NodeSpec('', '', 'path_tracker', command=('python3', 'my_tracker.py')).label
+        'my_tracker.py'
+        >>> NodeSpec('robotica_sim', 'odometry', 'odometry').label
+        'odometry'
+        """
+        if not self.command:
+            return self.name
+        scripts = [word for word in self.command[1:] if not word.startswith('-')]
+        return Path(scripts[0] if _is_python(self.command) and scripts
+                    else self.command[0]).name
 
 
 def reference_path(scenario: Scenario) -> tuple[list[list[float]], list[float] | None]:
@@ -213,12 +237,105 @@ def plan_run(scenario: Scenario) -> list[NodeSpec]:
     odometry and the simulator publish no /tf (``publish_tf`` false, ``truth_frame_id`` '').
     """
     nodes = _plan_arm(scenario) if scenario.is_manipulator else _plan_mobile(scenario)
+    nodes = [external_node(scenario, node) for node in nodes]
     if scenario.visualisation:
         return nodes
     off: dict[str, dict] = {'odometry': {'publish_tf': False},
                             'simulator': {'truth_frame_id': ''}}
     return [replace(node, parameters={**node.parameters, **off.get(node.executable, {})})
             for node in nodes if node.executable not in VISUALISATION_NODES]
+
+
+def external_roles(scenario: Scenario) -> list[tuple[Role, ExternalSpec]]:
+    """Return the roles of ``scenario`` that a user's command fills, with their specs."""
+    kind = 'manipulator' if scenario.is_manipulator else 'mobile'
+    steered = scenario.robot.type in STEERED_TYPES
+    return [(role_contract(role.name, steered), spec) for section, role in ROLE_SECTIONS.items()
+            if role.kind == kind
+            and (spec := getattr(getattr(scenario, section), 'external')) is not None]
+
+
+def optional_topics(scenario: Scenario) -> tuple[str, ...]:
+    """Return the recorded topics a run does not wait for: users' nodes' optional outputs."""
+    recorded = recorded_topics(scenario)
+    return tuple(name for role, _ in external_roles(scenario) for topic in role.outputs
+                 if not topic.required
+                 and (name := topic_name(topic.name, role.node_name)) in recorded)
+
+
+_PARAMETER_NAME = re.compile(r'[A-Za-z_][A-Za-z0-9_]*(\.[A-Za-z_][A-Za-z0-9_]*)*')
+_TOPIC_NAME = re.compile(r'(~/|/)?[A-Za-z_][A-Za-z0-9_]*(/[A-Za-z_][A-Za-z0-9_]*)*')
+
+
+def _is_python(command: tuple[str, ...]) -> bool:
+    return Path(command[0]).name.startswith('python')
+
+
+def _parameter_value(value: Any) -> bool:
+    """Return whether ``value`` is a ROS parameter value: a scalar or a list of one type."""
+    scalar = (bool, int, float, str)
+    if isinstance(value, list):
+        kinds = {type(v) for v in value}
+        return bool(value) and len(kinds) == 1 and all(_parameter_value(v) for v in value)
+    return isinstance(value, scalar) and not (isinstance(value, float)
+                                              and not math.isfinite(value))
+
+
+def _resolve_command(command: tuple[str, ...], folder: Path, where: str) -> tuple[str, ...]:
+    """Return ``command`` with its program found; raise ScenarioError if it cannot start."""
+    program = command[0]
+    if '/' in program:
+        found: Optional[str] = str((folder / program).resolve())
+        if not (os.path.isfile(found) and os.access(found, os.X_OK)):
+            found = None
+    else:
+        found = shutil.which(program)
+    if found is None:
+        raise ScenarioError(f'{where}.command: {program!r} is not an executable '
+                            f'{"file" if "/" in program else "on PATH"} (from {folder})')
+    scripts = [word for word in command[1:] if not word.startswith('-')]
+    if _is_python(command) and scripts and not (folder / scripts[0]).is_file():
+        raise ScenarioError(f'{where}.command: no script {scripts[0]!r} in {folder}')
+    return (found, *command[1:])
+
+
+def external_node(scenario: Scenario, node: NodeSpec) -> NodeSpec:
+    """
+    Return ``node``, or the user's command that the scenario names for its role instead.
+
+    The command is checked before anything starts: its program exists, its parameters are ROS
+    parameter values (not ``use_sim_time``, which the run sets: true), each remapping takes
+    one of the node's own names to a topic of the role's contract (:mod:`.roles`).
+    """
+    role = next((r for r, _ in external_roles(scenario) if r.node_name == node.name), None)
+    if role is None:
+        return node
+    spec = getattr(scenario, role.section).external
+    where = f'{scenario.source or scenario.name}: {role.section}.external'
+    folder = Path(scenario.source).parent if scenario.source else Path.cwd()
+    for name, value in spec.parameters.items():
+        if not isinstance(name, str) or not _PARAMETER_NAME.fullmatch(name) \
+                or name == 'use_sim_time':
+            raise ScenarioError(f'{where}.parameters: {name!r} is not a parameter name a node '
+                                'can take (use_sim_time is set by the run)')
+        if not _parameter_value(value):
+            raise ScenarioError(f'{where}.parameters.{name}: {value!r} is not a parameter value '
+                                '(a finite number, a string, true/false or a non-empty list '
+                                'of one of them)')
+    contract = {topic_name(t.name, role.node_name): t.name for t in role.topics}
+    for source, target in spec.remappings.items():
+        if not (isinstance(source, str) and _TOPIC_NAME.fullmatch(source)):
+            raise ScenarioError(f'{where}.remappings: {source!r} is not a topic name')
+        if not isinstance(target, str) or not _TOPIC_NAME.fullmatch(target) \
+                or topic_name(target, role.node_name) not in contract:
+            raise ScenarioError(f'{where}.remappings: {source} -> {target!r}: not a topic of '
+                                f'the contract of a {role.name}; its topics: '
+                                f'{", ".join(contract.values())} (docs/your_node.md)')
+    return NodeSpec('', '', role.node_name, dict(spec.parameters),
+                    {source: topic_name(target, role.node_name)
+                     for source, target in spec.remappings.items()},
+                    command=_resolve_command(spec.command, folder, where), cwd=str(folder),
+                    role=role.name)
 
 
 def _floats(values) -> list[float]:

@@ -107,8 +107,25 @@ class SensorsSpec:
 
 
 @dataclass(frozen=True)
+class ExternalSpec:
+    """
+    A user's own node in a role of the run (docs/your_node.md), instead of robotica's.
+
+    The command runs in the scenario file's folder, with ``--ros-args`` added: the node is
+    renamed to the role's node name, gets ``parameters`` (and ``use_sim_time``) from the run's
+    parameter file and the ``remappings`` (its topic name -> a topic of the role's contract).
+    """
+
+    command: tuple[str, ...] = ()                  # argv, e.g. [python3, my_tracker.py]
+    parameters: dict = field(default_factory=dict)     # its ROS parameters
+    remappings: dict = field(default_factory=dict)     # its name -> the contract's name
+    answer_timeout: float = 5.0                    # [s] wall clock: the longest wait for an
+    #                                                answer (the first, and every later one)
+
+
+@dataclass(frozen=True)
 class OdometrySpec:
-    """Dead reckoning and fusion settings (the odometry node)."""
+    """Dead reckoning and fusion settings (the odometry node), or a user's estimator."""
 
     integration_method: str = 'exact_arc'
     heading_source: str = 'encoders'               # or 'gyro' (needs sensors.gyro)
@@ -116,14 +133,16 @@ class OdometrySpec:
     fuse_compass: bool = False                     # needs sensors.compass
     wheel_radius_error: float = 0.0                # [-] nominal c = true c (1 + error)
     track_error: float = 0.0                       # [-] nominal b = true b (1 + error)
+    external: Optional[ExternalSpec] = None        # a user's estimator instead
 
 
 @dataclass(frozen=True)
 class TrackerSpec:
-    """The path tracker: its law and the law's gains (parameters ``<law>.<gain>``)."""
+    """The path tracker: its law and the law's gains (``<law>.<gain>``), or a user's node."""
 
     law: str = 'pure_pursuit'
     gains: dict = field(default_factory=dict)
+    external: Optional[ExternalSpec] = None
 
 
 ARM_MODELS = ('puma560', 'two_link_arm')
@@ -134,6 +153,7 @@ SEED_MAX = (2**31 - 1) // 10 - 1
 parameter takes up to 2**31 - 1."""
 INT64_MAX = 2**63 - 1               # an integer parameter of a node is int64
 MOBILE_SECTIONS = ('path', 'sensors', 'odometry', 'tracker')
+MAX_ANSWER_TIMEOUT = 600.0          # [s] of an external node's answer_timeout
 ARM_SECTIONS = ('arm', 'reference', 'controller')
 
 
@@ -178,6 +198,7 @@ class ControllerSpec:
     model_masses: tuple[float, ...] = ()           # two_link_arm estimate (m̂1, m̂2); () exact
     use_friction: bool = True
     gains: dict = field(default_factory=dict)
+    external: Optional[ExternalSpec] = None        # a user's joint controller instead
 
 
 @dataclass(frozen=True)
@@ -279,6 +300,13 @@ class Scenario:
              'odometry.wheel_radius_error and track_error must be in (-0.5, 0.5)'),
             (self.odometry.integration_method in ODOMETRY_METHODS,
              f'odometry.integration_method must be one of {ODOMETRY_METHODS}'),
+            *((spec is None or (0.1 <= spec.answer_timeout <= MAX_ANSWER_TIMEOUT
+                                and spec.command and all(spec.command)),
+               f'{section}.external: command must be a non-empty list of non-empty strings '
+               f'and answer_timeout in [0.1, {MAX_ANSWER_TIMEOUT:g}] s')
+              for section, spec in (('tracker', self.tracker.external),
+                                    ('odometry', self.odometry.external),
+                                    ('controller', self.controller.external))),
         ]
         for ok, message in checks:
             if not ok:
@@ -297,10 +325,14 @@ def _convert(value: Any, kind: Any, where: str) -> Any:
             raise ScenarioError(f'{where}: expected a mapping, got {_short(value)}')
         return _build(kind, value, where)
     origin = typing.get_origin(kind)
+    if origin is typing.Union:   # Optional[<dataclass>]
+        return _convert(value, typing.get_args(kind)[0], where)
     if origin is tuple:
+        item = typing.get_args(kind)[0]
         if not isinstance(value, (list, tuple)):
-            raise ScenarioError(f'{where}: expected a list of numbers, got {_short(value)}')
-        return tuple(_convert(v, float, f'{where}[{i}]') for i, v in enumerate(value))
+            raise ScenarioError(f'{where}: expected a list of '
+                                f'{"strings" if item is str else "numbers"}, got {_short(value)}')
+        return tuple(_convert(v, item, f'{where}[{i}]') for i, v in enumerate(value))
     if kind is dict:
         if not isinstance(value, dict):
             raise ScenarioError(f'{where}: expected a mapping, got {_short(value)}')
@@ -345,10 +377,10 @@ def _normalise(data: dict) -> dict:
         path = dict(data['path'])
         data['path'] = {k: path.pop(k) for k in ('shape', 'frame_id') if k in path}
         data['path']['args'] = path
-    for section, fixed, free in (('tracker', ('law',), 'gains'),
+    for section, fixed, free in (('tracker', ('law', 'external'), 'gains'),
                                  ('reference', ('generator',), 'args'),
-                                 ('controller', ('law', 'model_masses', 'use_friction'),
-                                  'gains')):
+                                 ('controller', ('law', 'model_masses', 'use_friction',
+                                                 'external'), 'gains')):
         if isinstance(data.get(section), dict):
             values = dict(data[section])
             data[section] = {free: values, **{k: values.pop(k) for k in fixed if k in values}}
@@ -364,6 +396,14 @@ def _check_sections(data: dict, where: str) -> None:
         kind = 'manipulator' if manipulator else 'mobile robot'
         raise ScenarioError(f'{where}: section(s) {", ".join(foreign)} do not apply to a '
                             f'{kind} run')
+    for section in ('tracker', 'odometry', 'controller'):
+        values = data.get(section)
+        if isinstance(values, dict) and 'external' in values and len(values) > 1:
+            others = ', '.join(f'{section}.{k}' for k in sorted(map(str, values))
+                               if k != 'external')
+            raise ScenarioError(f"{where}: {section}.external replaces robotica's own node: "
+                                f'{others} would be ignored; remove them (its parameters go in '
+                                f'{section}.external.parameters)')
 
 
 def resolve_scenario_path(name_or_path: str) -> Path:

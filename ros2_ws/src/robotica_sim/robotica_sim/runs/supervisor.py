@@ -38,13 +38,13 @@ class ProcessSupervisor:
         self.stalled: dict[str, int] = {}   # name -> times it was found stopped
         self._stopping: set[str] = set()
 
-    def start(self, name: str, argv: list[str]) -> None:
-        """Start process ``name`` running ``argv``."""
+    def start(self, name: str, argv: list[str], cwd: Optional[str] = None) -> None:
+        """Start process ``name`` running ``argv`` (in folder ``cwd``, default this one's)."""
         log = open(self.log_path(name), 'wb')
         try:
             self._procs[name] = subprocess.Popen(
                 argv, stdin=subprocess.DEVNULL, stdout=log, stderr=subprocess.STDOUT,
-                env=self._env, start_new_session=True, preexec_fn=_die_with_parent)
+                env=self._env, cwd=cwd, start_new_session=True, preexec_fn=_die_with_parent)
         finally:
             log.close()
 
