@@ -32,7 +32,7 @@ from types import FrameType, ModuleType
 from typing import NoReturn, Optional
 
 VERBS = ('run', 'new', 'info', 'play', 'grade', 'report', 'export', 'bag', 'bench', 'view',
-         'node', 'params')
+         'node', 'params', 'sweep')
 """The verbs, each a module of this package (imported when the command line is parsed)."""
 EXIT_INTERRUPTED = 130
 IMPORT_RETRY = 0.05   # [s] after which a signal deferred by an extension's import comes again

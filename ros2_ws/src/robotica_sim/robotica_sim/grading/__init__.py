@@ -2,7 +2,8 @@
 Grading a run from its bag.
 
 The one loader (series), the metrics, the rubric, the summary line of ``robotica run``, and
-the report: its HTML page (report) and its figures (figures).
+the report: its HTML page (report) and its figures (figures); one bag's grade (entry) and a
+folder of submissions' (submissions).
 """
 
-__all__ = ['figures', 'metrics', 'report', 'rubric', 'series', 'summary']
+__all__ = ['entry', 'figures', 'metrics', 'report', 'rubric', 'series', 'submissions', 'summary']

@@ -16,7 +16,8 @@ files and the page are :mod:`robotica_sim.grading.report`'s. :func:`auto_robot_e
   and one figure per sensor, ``gyro``, ``compass``, ``gps``: the reading against the truth
   and a histogram of the reading's error with its fitted normal density;
 * manipulator (book ch. 8): ``joint_positions``, ``joint_velocities``, ``joint_torques`` and
-  ``joint_errors`` (e = q_d - q, book (8.30)), one panel per joint.
+  ``joint_errors`` (e = q_d - q, book (8.30)), one panel per joint;
+* a sweep (``robotica sweep``): ``sweep_metric``, a metric against the varied value.
 
 The numbers come from the grading core: a sensor's error is
 :func:`~robotica_sim.grading.metrics.reading_error` (the reading minus the truth interpolated
@@ -29,7 +30,7 @@ Units are SI, angles in radians, headings REP-103 (θ from the x axis, counter-c
 Matplotlib is imported only when a figure is drawn, never at import.
 """
 import math
-from typing import Optional, TYPE_CHECKING
+from typing import Any, Optional, TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -46,7 +47,7 @@ if TYPE_CHECKING:   # Matplotlib is imported lazily, when figures are drawn
 
 __all__ = ['DPI', 'FIGURE_SIZE', 'auto_robot_every', 'commands', 'compass', 'estimation', 'gps',
            'gyro', 'joint_errors', 'joint_figure', 'joint_torques', 'robot_poses',
-           'tracking_errors', 'trajectory']
+           'sweep_metric', 'tracking_errors', 'trajectory']
 
 DPI = 100                     # [dots per inch] of the PNG files
 FIGURE_SIZE = (8.0, 5.0)      # [in] width, height of a figure
@@ -543,3 +544,44 @@ def joint_errors(fig: 'Figure', run: RunSeries, controller: Series) -> str:
     fig.suptitle('Joint position errors e = q_d - q', fontsize='large')
     return ('Position error of each joint, e = q_d - q [rad] (book (8.30)), as the controller '
             'computed it (/joint_controller/controller_state): ' + '; '.join(stats) + '.')
+
+
+def sweep_metric(fig: 'Figure', key: str, points: list[tuple[Any, str, float]], metric: str,
+                 unit: str) -> str:
+    """
+    Draw a sweep's ``metric`` against the varied ``key``: each run, and the mean per value.
+
+    ``points`` are ``(x, group, value)``: the value of ``key``, the other varied keys as a
+    label ('' when only one key is varied: one line) and the run's metric (NaN: not drawn).
+    Numbers are placed on a numeric axis, other values one per tick in their first order.
+    Returns the caption.
+    """
+    ax = fig.add_subplot(1, 1, 1)
+    xs = list(dict.fromkeys(p[0] for p in points))
+    numeric = all(isinstance(x, (int, float)) and not isinstance(x, bool) for x in xs)
+    place = {x: (float(x) if numeric else float(i)) for i, x in enumerate(xs)}
+    groups = list(dict.fromkeys(p[1] for p in points))
+    means = []
+    for colour, group in enumerate(groups):
+        mine = [(place[x], v) for x, g, v in points if g == group and math.isfinite(v)]
+        if not mine:
+            continue
+        ax.plot([p[0] for p in mine], [p[1] for p in mine], 'o', color=f'C{colour}',
+                alpha=0.45, markersize=5, label=f'each run{", " + group if group else ""}')
+        at = sorted({p[0] for p in mine})
+        mean = [float(np.mean([v for x, v in mine if x == a])) for a in at]
+        ax.plot(at, mean, '-', color=f'C{colour}', linewidth=1.5,
+                label=f'mean{", " + group if group else ""}')
+        means += [f'{a:g}: {m:.4g}' if numeric else f'{xs[int(a)]}: {m:.4g}'
+                  for a, m in zip(at, mean)]
+    if not numeric:
+        ax.set_xticks(range(len(xs)), [str(x) for x in xs])
+    ax.set_xlabel(key)
+    ax.set_ylabel(f'{metric} [{unit}]' if unit and unit != '-' else metric)
+    ax.grid(True, alpha=0.3)
+    if means:
+        ax.legend(fontsize='small', loc='best')
+    fig.suptitle(f'{metric} against {key}', fontsize='large')
+    return (f'{metric} of each run (dots) and its mean over the runs of each value (line) '
+            f'against {key}. Means: ' + ('; '.join(means) or 'none (no run gave the metric)')
+            + '.')
