@@ -107,21 +107,25 @@ def run_job(job: RunJob) -> dict:
     Run and grade one run of a sweep; return its record (never raises for a failed run).
 
     The record: ``run``, ``settings``, ``domain_id``, ``run_dir``, ``status`` (``ok``, or
-    ``failed`` with ``error`` the reason), ``exit_code``, ``wall_time`` [s], and the bag's
+    ``failed`` with ``error`` the reason), ``exit_code``, ``wall_time`` [s] of the run,
+    ``started`` and ``ended`` (seconds since the epoch: while it held its domain), the bag's
     ``metrics``, ``checks`` and ``failed`` checks as :func:`grade_bag` gives them.
     """
     record = {'run': job.name, 'settings': job.settings, 'domain_id': None,
               'run_dir': job.run_dir, 'status': 'failed', 'error': None, 'exit_code': None,
-              'wall_time': None, 'metrics': {}, 'absent': {}, 'checks': [], 'failed': []}
-    start = time.monotonic()
+              'wall_time': None, 'started': None, 'ended': None, 'metrics': {}, 'absent': {},
+              'checks': [], 'failed': []}
     domain, release = _take_domain(job.domain_ids)
     record['domain_id'] = domain
+    start = time.monotonic()
+    record['started'] = time.time()   # [s] since the epoch, while it held the domain
     try:
         code, _, err = _run(job, domain)
     except OSError as exc:
         record['error'] = f'cannot start robotica run: {exc.strerror or exc}'
         return record
     finally:
+        record['ended'] = time.time()
         release()
     record['exit_code'] = code
     record['wall_time'] = round(time.monotonic() - start, 3)

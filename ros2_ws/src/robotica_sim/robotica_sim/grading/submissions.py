@@ -66,8 +66,9 @@ def submission_rows(entries: list[dict], root: Path) -> list[dict]:
     Return one row per bag, sorted by student and run: what the table, CSV and JSON hold.
 
     A row: ``student``, ``run``, ``bag``, ``status`` (pass, fail, ok, error), ``passed`` and
-    ``checks`` (counts), ``error``, ``checks_by_metric`` (each check's value, passed,
-    missing and message) and ``metrics`` (every metric's value; absent ones left out).
+    ``checks`` (counts), ``error``, ``checks_by_metric`` (each check's value, None when
+    missing, passed, missing and message) and ``metrics`` (every metric's value; absent ones
+    left out).
     """
     rows = []
     for entry in entries:
@@ -76,9 +77,10 @@ def submission_rows(entries: list[dict], root: Path) -> list[dict]:
             'student': student, 'run': run, 'bag': entry['bag'], 'status': entry['status'],
             'passed': sum(c['passed'] for c in entry['checks']),
             'checks': len(entry['checks']), 'error': entry['error'],
-            'checks_by_metric': {c['metric']: {k: c.get(k) for k in (
-                'value', 'min', 'max', 'passed', 'missing', 'message')}
-                for c in entry['checks']},
+            'checks_by_metric': {c['metric']: {
+                **{k: c.get(k) for k in ('value', 'min', 'max', 'passed', 'missing',
+                                         'message')},
+                **({'value': None} if c.get('missing') else {})} for c in entry['checks']},
             'metrics': entry['metrics'], 'absent': entry['absent']})
     return sorted(rows, key=lambda r: (r['student'], r['run']))
 

@@ -204,3 +204,45 @@ def test_help_has_examples():
     with pytest.raises(SystemExit) as exit_info:
         parser.parse_args(['x', '--jobs', '0'])
     assert exit_info.value.code == 2
+
+
+def test_a_folder_of_submissions_gives_a_table_csv_json_and_reports(tmp_path, capsys):
+    import csv
+    subs = tmp_path / 'submissions'
+    write_run(subs / 'ana' / 'bag', 0.05)                 # one bag per student
+    write_run(subs / 'ben' / 'try1' / 'bag', 0.5)         # one folder of runs per student
+    write_run(subs / 'ben' / 'try2' / 'bag', 0.05)
+    rubric = tmp_path / 'rubric.yaml'                     # /odom is in no bag: missing
+    rubric.write_text(RUBRIC + '  max_position_error: {max: 0.5}\n')
+    out = tmp_path / 'grades'
+    assert run_grade(subs, '--rubric', rubric, '--output', out, '--workers', 2) == 1
+    text = capsys.readouterr().out
+    rows = {tuple(line.split()[:2]): line.split() for line in text.splitlines()
+            if line.startswith(('ana', 'ben'))}
+    assert set(rows) == {('ana', '-'), ('ben', 'try1'), ('ben', 'try2')}
+    # columns: scenario first, then the checks by name; value and PASS/FAIL, or missing
+    assert rows[('ana', '-')] == ['ana', '-', 'straight', 'PASS', '0.5', 'PASS', 'missing',
+                                  '0.05', 'PASS', '3/4']
+    assert rows[('ben', 'try1')][-3:] == ['0.5', 'FAIL', '2/4']
+    with open(out / 'grades.csv', newline='') as f:
+        table = list(csv.DictReader(f))
+    assert [(r['student'], r['run'], r['status']) for r in table] == [
+        ('ana', '', 'fail'), ('ben', 'try1', 'fail'), ('ben', 'try2', 'fail')]
+    assert table[0]['max_position_error'] == 'missing' != '0'
+    assert table[0]['max_position_error_result'] == 'missing'
+    assert float(table[1]['rms_cross_track']) == pytest.approx(0.5)
+    assert table[1]['rms_cross_track_result'] == 'fail' and table[1]['passed'] == '2'
+    grades = json.loads((out / 'grades.json').read_text())
+    assert [s['student'] for s in grades['students']] == ['ana', 'ben']
+    ben = grades['students'][1]['runs']
+    assert [r['run'] for r in ben] == ['try1', 'try2']
+    missing = ben[1]['checks_by_metric']['max_position_error']
+    assert missing['missing'] is True and missing['value'] is None and not missing['passed']
+    assert 'needs topic /odom' in missing['message']
+    report = (out / 'reports' / 'ben.md').read_text()
+    assert '## try1: 2/4' in report and '## try2: 3/4' in report
+    # The same bags give the same files, graded in one process or on the cluster.
+    assert run_grade(subs, '--rubric', rubric, '--output', tmp_path / 'again', '--workers', 1,
+                     '--quiet') == 1
+    for name in ('grades.csv', 'grades.json', 'reports/ana.md'):
+        assert (tmp_path / 'again' / name).read_text() == (out / name).read_text()
