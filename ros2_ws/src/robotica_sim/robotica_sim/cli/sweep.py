@@ -139,11 +139,13 @@ def plot_results(results: list[dict], keys: list[str], metric: str, output: Path
     from robotica_sim.grading import figures
 
     x_key = keys[0] if keys else 'seed'
+    # One line per value of the other varied keys; the seeds are averaged over.
+    others = [k for k in keys[1:] if k != 'seed']
     points = []
     for r in results:
         if r['status'] != 'ok' or metric not in r['metrics']:
             continue
-        group = ', '.join(f'{k}={r["settings"][k]}' for k in keys[1:])
+        group = ', '.join(f'{k}={r["settings"][k]}' for k in others)
         points.append((r['settings'].get(x_key, 0), group, _metric_value(r['metrics'][metric])))
     fig = Figure(figsize=figures.FIGURE_SIZE, dpi=figures.DPI)
     figures.sweep_metric(fig, x_key, points, metric, METRICS[metric].unit)

@@ -217,3 +217,19 @@ def test_joint_figure_names_the_joints(kind, symbol):
     text = figures.joint_figure(fig, arm_run(), kind)
     assert symbol in text
     assert [ax.get_title() for ax in fig.axes] == ['shoulder', 'elbow']
+
+
+def test_sweep_metric_draws_each_run_and_the_mean_per_value():
+    fig = Figure()
+    points = [(0.5, '', 1.0), (0.5, '', 3.0), (2, '', 5.0), (4, '', math.nan)]
+    caption = figures.sweep_metric(fig, 'tracker.lookahead_distance', points,
+                                   'rms_cross_track', 'm')
+    assert 'Means: 0.5: 2; 2: 5.' in caption   # (1 + 3) / 2 and 5; the NaN run is left out
+    (ax,) = fig.axes
+    runs, mean = ax.lines
+    assert list(runs.get_xdata()) == [0.5, 0.5, 2.0] and list(mean.get_ydata()) == [2.0, 5.0]
+    assert ax.get_xlabel() == 'tracker.lookahead_distance'
+    assert ax.get_ylabel() == 'rms_cross_track [m]'
+    words = figures.sweep_metric(Figure(), 'tracker.law', [('stanley', '', 1.0),
+                                                           ('pure_pursuit', '', 2.0)], 'x', '')
+    assert 'stanley: 1; pure_pursuit: 2' in words   # categories in their first order
