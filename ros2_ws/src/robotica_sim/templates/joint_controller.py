@@ -31,8 +31,8 @@ class PdController(Node):
 
     def __init__(self) -> None:
         super().__init__('my_joint_controller')
-        self.kp = self.declare_parameter('kp', [400.0, 40.0]).value   # K_p per joint [N m/rad]
-        self.kv = self.declare_parameter('kv', [80.0, 8.0]).value     # K_v [N m s/rad]
+        self.kp = self.declare_parameter('kp', [1600.0, 160.0]).value   # K_p per joint [N m/rad]
+        self.kv = self.declare_parameter('kv', [160.0, 16.0]).value     # K_v [N m s/rad]
         self.times: list[float] = []          # [s] from the start of the reference
         self.positions: list[list[float]] = []
         self.velocities: list[list[float]] = []

@@ -32,7 +32,7 @@ from rclpy.experimental import EventsExecutor
 from robotica_ctrl.joint_control import JointControlLaw, JointReference, JointState
 from robotica_ctrl.joint_control.control_laws import (FIRST_PERIOD, JOINT_LAW_PARAMETERS,
                                                       JOINT_LAWS, make_joint_law, MAX_PERIOD)
-from robotica_ctrl.trajectory.sampled_trajectory import SampledTrajectory
+from robotica_ctrl.trajectory.sampled_trajectory import SampledTrajectory, trajectory_from_points
 from robotica_kin.bounds import bounded_array, MAX_JOINT_POSITION, MAX_JOINT_VELOCITY, StampGate
 from robotica_kin.ros.convert import joint_state_values, seconds_to_stamp, stamp_to_seconds
 from robotica_kin.ros.dh_messages import declare_robot
@@ -93,28 +93,9 @@ class JointControllerNode(GuardedNode):
 
     # -- reference --------------------------------------------------------------------------
     def _on_trajectory(self, msg: JointTrajectory) -> None:
-        try:
-            order = [list(msg.joint_names).index(name) for name in self._names]
-        except ValueError:
-            self.get_logger().error(f'trajectory refused: joints {list(msg.joint_names)} do not '
-                                    f'cover {self._names}')
-            return
         points = msg.points
         try:
-            if not points:
-                raise ValueError('no points')
-            times = [stamp_to_seconds(p.time_from_start) for p in points]
-            columns = []
-            for field in ('positions', 'velocities', 'accelerations'):
-                sizes = {len(getattr(p, field)) for p in points}
-                if sizes == {0}:
-                    break
-                if sizes != {len(msg.joint_names)}:
-                    raise ValueError(f'every point needs {len(msg.joint_names)} {field}')
-                columns.append(np.array([getattr(p, field) for p in points])[:, order])
-            if not columns:
-                raise ValueError('points have no positions')
-            trajectory = SampledTrajectory(times, *columns)
+            trajectory = trajectory_from_points(msg.joint_names, points, self._names)
         except ValueError as err:
             self.get_logger().error(f'trajectory refused: {err}; keeping the previous reference')
             return

@@ -16,7 +16,7 @@ from numpy.typing import ArrayLike, NDArray
 from robotica_ctrl.joint_control.law import JointReference
 from scipy.interpolate import PPoly
 
-__all__ = ['SampledTrajectory']
+__all__ = ['SampledTrajectory', 'trajectory_from_points']
 
 
 def _samples(name: str, value: ArrayLike, shape: tuple[int, int]) -> NDArray[np.float64]:
@@ -146,3 +146,39 @@ class SampledTrajectory:
         position, velocity, acceleration = (dt ** exponents @ c[:, i, :]
                                             for c, exponents in self._polynomials)
         return JointReference(position, velocity, acceleration)
+
+
+def trajectory_from_points(joint_names: list[str], points: list, names: list[str]
+                           ) -> SampledTrajectory:
+    """
+    Return the SampledTrajectory of a JointTrajectory's points, in the joint order ``names``.
+
+    ``points`` are ``trajectory_msgs/JointTrajectoryPoint``-like objects (``time_from_start``
+    with ``sec``/``nanosec``, ``positions``, optional ``velocities`` and ``accelerations``, in
+    the order of ``joint_names``): the messages of rclpy and of a bag reader alike.
+
+    Raises
+    ------
+    ValueError
+        If ``joint_names`` does not cover ``names``, there are no points, a point lacks a
+        field the others have, or the samples are not a trajectory (see SampledTrajectory).
+
+    """
+    try:
+        order = [list(joint_names).index(name) for name in names]
+    except ValueError:
+        raise ValueError(f'joints {list(joint_names)} do not cover {list(names)}') from None
+    if not points:
+        raise ValueError('no points')
+    times = [p.time_from_start.sec + p.time_from_start.nanosec * 1e-9 for p in points]
+    columns = []
+    for field in ('positions', 'velocities', 'accelerations'):
+        sizes = {len(getattr(p, field)) for p in points}
+        if sizes == {0}:
+            break
+        if sizes != {len(joint_names)}:
+            raise ValueError(f'every point needs {len(joint_names)} {field}')
+        columns.append(np.array([getattr(p, field) for p in points])[:, order])
+    if not columns:
+        raise ValueError('points have no positions')
+    return SampledTrajectory(times, *columns)

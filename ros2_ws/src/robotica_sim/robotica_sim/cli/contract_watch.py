@@ -33,7 +33,7 @@ class _Answers:
         self.count = 0
         self.last = 0.0            # [s] wall clock (monotonic) of the newest answer
         self.last_sim = 0.0        # [s] simulated time when it came
-        self.non_finite: Optional[tuple[list[str], float]] = None   # fields, sim time
+        self.non_finite: Optional[list[str]] = None   # the fields of the first bad answer
 
 
 class ContractWatch:
@@ -59,9 +59,9 @@ class ContractWatch:
                                      lambda msg, a=answers: self._note(a, msg), _WATCH_QOS)
             self._answers.append(answers)
 
-    def __bool__(self) -> bool:
-        """Return whether the run has a user's node to watch."""
-        return bool(self._answers)
+    def __len__(self) -> int:
+        """Return how many users' nodes the run has."""
+        return len(self._answers)
 
     def label(self, name: str) -> Optional[str]:
         """Return how messages name the user's node ``name`` (None: not a user's node)."""
@@ -69,13 +69,12 @@ class ContractWatch:
                      if a.spec.name == name), None)
 
     def _note(self, answers: _Answers, msg) -> None:
+        """Count an answer; keep the fields of the first non-finite one."""
         answers.count += 1
         answers.last = time.monotonic()
         answers.last_sim = self._sim_time
         if answers.non_finite is None:
-            bad = non_finite_fields(msg)
-            if bad:
-                answers.non_finite = (bad, self._sim_time)
+            answers.non_finite = non_finite_fields(msg) or None
 
     def unpublished(self, elapsed: float) -> Optional[str]:
         """
@@ -104,11 +103,10 @@ class ContractWatch:
         now = time.monotonic()
         for a in self._answers:
             name = f'`{a.spec.label}`'
-            if a.non_finite is not None:
-                fields, at = a.non_finite
+            if a.non_finite is not None:   # published at or before this check's time
                 return (f'{name} published a {a.role.answer} with a non-finite '
-                        f'{", ".join(fields[:4])} at t = {at:.3f} s: the simulator refused it '
-                        f'and stopped the robot. {self._contract(a)}')
+                        f'{", ".join(a.non_finite[:4])} (seen by t = {sim_time:.3f} s): the '
+                        f'simulator refused it and stopped the robot. {self._contract(a)}')
             if not running:
                 continue
             if a.count == 0 and now - started > a.timeout:

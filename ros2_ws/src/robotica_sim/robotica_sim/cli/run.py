@@ -364,7 +364,8 @@ def _simulate(args, scenario, plan: list[NodeSpec], run_dir: Path,
             # Ten looks a second: the newest /clock waits in its keep-last-1 queue. Spinning on
             # every /clock cost this process 9 s of CPU in a 30-s run of 3000 steps.
             time.sleep(WATCH_PERIOD)
-            executor.spin_once(timeout_sec=0.0)
+            for _ in range(1 + len(watch)):   # /clock and each watched answer
+                executor.spin_once(timeout_sec=0.0)
             _progress(args, sim_time[0], scenario.duration)
             if fault is None:
                 broken = watch.failure(sim_time[0], start)

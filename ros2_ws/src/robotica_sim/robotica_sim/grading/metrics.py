@@ -72,7 +72,8 @@ class MetricInfo:
 
 _TRUTH, _PATH, _ODOM = TOPICS['truth'], TOPICS['path'], TOPICS['odom']
 _CONTROLLER, _TORQUES = TOPICS['controller'], TOPICS['torques']
-_JOINTS = TOPICS['joint_states']
+_JOINTS, _REFERENCE = TOPICS['joint_states'], TOPICS['trajectory']
+_JOINT_ERROR = (_JOINTS, _REFERENCE)   # or the controller's report, _CONTROLLER
 
 METRICS: dict[str, MetricInfo] = {
     'rms_cross_track': MetricInfo(
@@ -132,17 +133,18 @@ METRICS: dict[str, MetricInfo] = {
         'fraction of /odom samples whose x, y and heading errors are all within sigma_bound '
         '(3) standard deviations of the odom covariance diagonal; n/a without covariance'),
     'rms_joint_error': MetricInfo(
-        'rad|m', 'arm', (_CONTROLLER,), 'per joint, RMS of e = q_d - q (8.30)',
+        'rad|m', 'arm', _JOINT_ERROR, 'per joint, RMS of e = q_d - q (8.30): q of /joint_states, '
+        'q_d the recorded joint trajectory at its times (without them, the controller_state)',
         per_joint=True),
     'max_joint_error': MetricInfo(
-        'rad|m', 'arm', (_CONTROLLER,), 'per joint, largest |e|', per_joint=True),
+        'rad|m', 'arm', _JOINT_ERROR, 'per joint, largest |e|', per_joint=True),
     'settling_time': MetricInfo(
-        's', 'arm', (_CONTROLLER,),
+        's', 'arm', _JOINT_ERROR,
         'per joint, time from the first sample after which |e| stays within the band '
         'settling_band * max(reference span, |e(0)|); n/a when the last sample is outside',
         per_joint=True),
     'overshoot': MetricInfo(
-        '%', 'arm', (_CONTROLLER,),
+        '%', 'arm', _JOINT_ERROR,
         'per joint, 100 * (largest travel of q beyond the final reference) / |final reference '
         '- q(0)|, for a set-point reference (held over the last quarter of the run)',
         per_joint=True),
@@ -154,11 +156,11 @@ METRICS: dict[str, MetricInfo] = {
         'integral of sum_j |tau_j qdot_j| dt (trapezoid), tau from /joint_torques, qdot from '
         '/joint_states interpolated at the torque times'),
     'rms_cartesian_error': MetricInfo(
-        'm', 'arm', (_CONTROLLER,),
+        'm', 'arm', _JOINT_ERROR,
         'RMS distance between the tool positions of q_d and q = q_d - e, by forward '
         "kinematics (4.6) of the scenario's arm (two_link_arm: tip at l2 along x2; puma560)"),
     'max_cartesian_error': MetricInfo(
-        'm', 'arm', (_CONTROLLER,), 'largest tool position error, as rms_cartesian_error'),
+        'm', 'arm', _JOINT_ERROR, 'largest tool position error, as rms_cartesian_error'),
 }
 """Every metric :func:`compute_metrics` knows, by name."""
 
@@ -481,22 +483,40 @@ def _estimation(run: RunSeries, params: MetricParams, out: RunMetrics) -> None:
     values['within_3_sigma'] = float(np.mean(within))
 
 
-def _arm(run: RunSeries, params: MetricParams, out: RunMetrics) -> None:
-    values, notes = out.values, out.notes
+def _joint_errors(run: RunSeries) -> tuple[NDArray[np.float64], NDArray[np.float64],
+                                           NDArray[np.float64]] | None:
+    """
+    Return the times [s], the reference q_d and the error e = q_d - q (8.30), each (n, joints).
+
+    From the simulator's joint states against the recorded reference when the bag has both:
+    the truth, whoever controlled the arm (a user's controller's own report is not graded);
+    else from the controller's ``controller_state``; None without either.
+    """
+    if run.reference is not None and run.joint_states is not None \
+            and run.joint_states['position'].shape == run.reference['position'].shape:
+        q_d = run.reference['position']
+        return run.reference.t, q_d, q_d - run.joint_states['position']
     controller = run.controller
     if controller is not None and len(controller) > 0:
-        e = controller['position_error']
-        q_d = controller['reference_position']
+        return controller.t, controller['reference_position'], controller['position_error']
+    return None
+
+
+def _arm(run: RunSeries, params: MetricParams, out: RunMetrics) -> None:
+    values, notes = out.values, out.notes
+    errors = _joint_errors(run)
+    if errors is not None and len(errors[0]) > 0:
+        t, q_d, e = errors
         q = q_d - e
         values['rms_joint_error'] = [rms(column) for column in e.T]
         values['max_joint_error'] = np.max(np.abs(e), axis=0).tolist()
         span = np.maximum(np.ptp(q_d, axis=0), np.abs(e[0]))
-        settling = [settling_time(controller.t, e[:, j], params.settling_band * span[j])
+        settling = [settling_time(t, e[:, j], params.settling_band * span[j])
                     for j in range(e.shape[1])]
         values['settling_time'] = settling
         if None in settling:
             notes['settling_time'] = 'n/a for a joint whose error ends outside the band'
-        late = controller.t >= controller.t[0] + 0.75 * (controller.t[-1] - controller.t[0])
+        late = t >= t[0] + 0.75 * (t[-1] - t[0])
         held = np.all(np.abs(q_d[late] - q_d[-1]) <= 1e-9 * np.maximum(1.0, np.abs(q_d[-1])),
                       axis=0)
         overshoots = [overshoot(q[:, j], float(q_d[-1, j])) if held[j] else None
@@ -598,6 +618,8 @@ def compute_metrics(run: RunSeries, params: MetricParams | None = None) -> RunMe
         reason = _lacks(run, info.topics)
         if name in _TRACKING_FALLBACK:
             reason += f' (or {TOPICS["tracking_error"]})'
+        elif info.topics == _JOINT_ERROR:
+            reason += f' (or {_CONTROLLER})'
         out.absent[name] = reason
     return out
 

@@ -27,6 +27,7 @@ from typing import Any, Callable, Iterable
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
+from robotica_ctrl.trajectory.sampled_trajectory import trajectory_from_points
 from robotica_kin.geodetic import GeodeticOrigin
 from robotica_sim.bags.info import BagError, open_bag
 from robotica_sim.bags.run_record import custom_data, run_record, RunRecord
@@ -47,6 +48,7 @@ TOPICS = {
     'gps': '/gps/fix',
     'joint_states': '/joint_states',
     'controller': '/joint_controller/controller_state',
+    'trajectory': '/joint_controller/joint_trajectory',
     'torques': '/joint_torques',
     'status': '/simulator/status',
 }
@@ -65,6 +67,7 @@ MSGTYPES = {
     'gps': 'sensor_msgs/msg/NavSatFix',
     'joint_states': 'sensor_msgs/msg/JointState',
     'controller': 'robotica_msgs/msg/JointControllerState',
+    'trajectory': 'trajectory_msgs/msg/JointTrajectory',
     'torques': 'std_msgs/msg/Float64MultiArray',
     'status': 'robotica_msgs/msg/SimulatorStatus',
 }
@@ -121,7 +124,10 @@ class RunSeries:
     - ``joint_states``: ``position`` [rad | m], ``velocity`` [rad/s | m/s], ``effort``
       [N m | N], each (n, joints); ``controller``: ``reference_position``,
       ``reference_velocity``, ``position_error`` (e = q_d - q, book (8.30)),
-      ``velocity_error``, ``effort``, each (n, joints); ``torques``: ``effort`` (n, joints).
+      ``velocity_error``, ``effort``, each (n, joints) (what the controller reports);
+      ``reference``: ``position``, ``velocity`` (n, joints), the reference
+      (``/joint_controller/joint_trajectory``) at the times of ``joint_states``: what the
+      grading compares the simulator's joints with; ``torques``: ``effort`` (n, joints).
     """
 
     bag: Path
@@ -141,6 +147,7 @@ class RunSeries:
     controller: Series | None
     torques: Series | None
     status: dict | None                 # last /simulator/status
+    reference: Series | None = None     # the joint trajectory at the joint states' times
     msgtypes: dict[str, str] = field(default_factory=dict)  # type of every topic of the bag
     ignored: dict[str, str] = field(default_factory=dict)   # known topic of another type: why
     run: RunRecord = field(default_factory=RunRecord)       # the run's settings and nodes
@@ -323,6 +330,28 @@ def _joint_series(role: str, msgs: list[tuple[Any, int]]) -> Series:
     return Series(t, columns, tuple(names))
 
 
+def _joint_reference(msg: Any, states: Series | None) -> Series | None:
+    """
+    Return the joint reference at the joint states' times, or None without one of the two.
+
+    The trajectory is interpolated as the joint controller does it
+    (:func:`robotica_ctrl.trajectory.sampled_trajectory.trajectory_from_points`); stamped 0 it
+    starts at the first joint state, else at its stamp. None too for a trajectory that does not
+    name the states' joints or is not one (the controller refused it as well).
+    """
+    if msg is None or states is None or len(states) == 0:
+        return None
+    try:
+        trajectory = trajectory_from_points(msg.joint_names, msg.points, list(states.names))
+    except ValueError:
+        return None
+    stamp = msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9
+    start = stamp if stamp > 0.0 else float(states.t[0])
+    samples = [trajectory.sample(t - start) for t in states.t]
+    return Series(states.t, {'position': np.array([s.q_d for s in samples]),
+                             'velocity': np.array([s.qd_d for s in samples])}, states.names)
+
+
 def _path(msg: Any) -> tuple[NDArray[np.float64], NDArray[np.float64] | None]:
     """Return the positions (N, 2) [m] of a nav_msgs/Path and its stamps if increasing."""
     points = np.array([[p.pose.position.x, p.pose.position.y] for p in msg.poses],
@@ -387,7 +416,7 @@ def load_run(bag: str | Path, topics: Iterable[str] | None = None) -> RunSeries:
             if connection.id not in decoded_ids:
                 continue
             role = roles_by_topic[connection.topic]
-            if role in ('clock', 'status', 'path'):   # only the last one matters
+            if role in ('clock', 'status', 'path', 'trajectory'):   # only the last matters
                 last[role] = (connection, raw)
                 continue
             msg = reader.deserialize(raw, connection.msgtype)
@@ -429,6 +458,7 @@ def load_run(bag: str | Path, topics: Iterable[str] | None = None) -> RunSeries:
         cmd=series['cmd_vel'] if series['cmd_vel'] is not None else series['vehicle_command'],
         tracking_error=series['tracking_error'], imu=series['imu'], compass=series['compass'],
         gps=series['gps'], joint_states=joints['joint_states'], controller=joints['controller'],
+        reference=_joint_reference(decoded.get('trajectory'), joints['joint_states']),
         torques=joints['torques'], status=status, msgtypes=msgtypes, ignored=ignored)
 
 

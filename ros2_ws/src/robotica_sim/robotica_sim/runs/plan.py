@@ -112,9 +112,7 @@ class NodeSpec:
         """
         if not self.command:
             return self.name
-        scripts = [word for word in self.command[1:] if not word.startswith('-')]
-        return Path(scripts[0] if _is_python(self.command) and scripts
-                    else self.command[0]).name
+        return Path(python_script(self.command) or self.command[0]).name
 
 
 def reference_path(scenario: Scenario) -> tuple[list[list[float]], list[float] | None]:
@@ -267,8 +265,23 @@ _PARAMETER_NAME = re.compile(r'[A-Za-z_][A-Za-z0-9_]*(\.[A-Za-z_][A-Za-z0-9_]*)*
 _TOPIC_NAME = re.compile(r'(~/|/)?[A-Za-z_][A-Za-z0-9_]*(/[A-Za-z_][A-Za-z0-9_]*)*')
 
 
-def _is_python(command: tuple[str, ...]) -> bool:
-    return Path(command[0]).name.startswith('python')
+def python_script(command: tuple[str, ...]) -> Optional[str]:
+    """
+    Return the script a Python command runs (None: not Python, or ``-c``/``-m``).
+
+    >>> python_script(('python3', '-u', 'my_tracker.py', '-x'))
+    'my_tracker.py'
+    >>> python_script(('python3', '-m', 'my_package')) is None
+    True
+    """
+    if not Path(command[0]).name.startswith('python'):
+        return None
+    for word in command[1:]:
+        if word in ('-c', '-m'):
+            return None
+        if not word.startswith('-'):
+            return word
+    return None
 
 
 def _parameter_value(value: Any) -> bool:
@@ -285,17 +298,17 @@ def _resolve_command(command: tuple[str, ...], folder: Path, where: str) -> tupl
     """Return ``command`` with its program found; raise ScenarioError if it cannot start."""
     program = command[0]
     if '/' in program:
-        found: Optional[str] = str((folder / program).resolve())
-        if not (os.path.isfile(found) and os.access(found, os.X_OK)):
-            found = None
+        candidate = str((folder / program).resolve())
+        found = candidate if os.path.isfile(candidate) and os.access(candidate, os.X_OK) \
+            else None
     else:
         found = shutil.which(program)
     if found is None:
         raise ScenarioError(f'{where}.command: {program!r} is not an executable '
                             f'{"file" if "/" in program else "on PATH"} (from {folder})')
-    scripts = [word for word in command[1:] if not word.startswith('-')]
-    if _is_python(command) and scripts and not (folder / scripts[0]).is_file():
-        raise ScenarioError(f'{where}.command: no script {scripts[0]!r} in {folder}')
+    script = python_script(command)
+    if script is not None and not (folder / script).is_file():
+        raise ScenarioError(f'{where}.command: no script {script!r} in {folder}')
     return (found, *command[1:])
 
 
