@@ -32,7 +32,7 @@ from types import FrameType, ModuleType
 from typing import NoReturn, Optional
 
 VERBS = ('run', 'new', 'info', 'play', 'grade', 'report', 'export', 'bag', 'bench', 'view',
-         'node', 'params', 'sweep')
+         'node', 'params', 'sweep', 'assignment')
 """The verbs, each a module of this package (imported when the command line is parsed)."""
 EXIT_INTERRUPTED = 130
 IMPORT_RETRY = 0.05   # [s] after which a signal deferred by an extension's import comes again
@@ -62,8 +62,9 @@ def usage_errors() -> tuple[type[Exception], ...]:
     from robotica_sim.bags.export import ExportError
     from robotica_sim.bags.player import SelectionError
     from robotica_sim.grading.rubric import RubricError
+    from robotica_sim.runs.assignment import AssignmentError
     from robotica_sim.runs.scenario import ScenarioError
-    return ScenarioError, RubricError, SelectionError, ExportError
+    return ScenarioError, RubricError, SelectionError, ExportError, AssignmentError
 
 
 def failure_errors() -> tuple[type[Exception], ...]:

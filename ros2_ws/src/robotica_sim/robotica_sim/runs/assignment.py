@@ -67,6 +67,16 @@ class Assignment:
         """Return the path of the file ``name`` of the manifest."""
         return self.folder / name
 
+    @staticmethod
+    def run_name(scenario: str) -> str:
+        """
+        Return the name of the run folder of the manifest's ``scenario``: one per scenario.
+
+        >>> Assignment.run_name('part2/scenario.yaml')
+        'part2_scenario'
+        """
+        return Path(scenario).with_suffix('').as_posix().replace('/', '_')
+
     @property
     def files(self) -> tuple[str, ...]:
         """Return the files the manifest names, each once (the handed-in one is the students')."""
@@ -160,6 +170,9 @@ def parse_assignment(data: Any, folder: Path, source: str = MANIFEST) -> Assignm
     if not isinstance(scenarios, list) or not scenarios:
         raise AssignmentError(f'{source}: scenarios must be a scenario file or a non-empty '
                               f'list of them, got {data["scenarios"]!r}')
+    twice = sorted({str(s) for s in scenarios if scenarios.count(s) > 1})
+    if twice:
+        raise AssignmentError(f'{source}: scenarios: {", ".join(twice)} given twice')
     return Assignment(
         title=title.strip(), role=data['role'],
         scenarios=tuple(_relative(s, f'{source}: scenarios[{i}]')

@@ -101,6 +101,7 @@ def test_an_unknown_manifest_key_is_refused(tmp_path):
     ('role: driver', "role must be one of tracker, estimator, joint_controller, got 'driver'"),
     ('rubric: ../rubric.yaml', 'rubric must be a path inside the assignment folder'),
     ('scenarios: []', 'scenarios must be a scenario file or a non-empty list of them'),
+    ('scenarios: [scenario.yaml, scenario.yaml]', 'scenarios: scenario.yaml given twice'),
     ('title: ""', 'title must be a non-empty string'),
     ('template: 3', 'template must be a file name in the assignment folder, got 3'),
 ])
