@@ -125,9 +125,10 @@ def relay_rows(forwarded: dict[str, int], recorded: dict[str, int],
     return rows
 
 
-def demo_run(run_dir: Path, visualisation: bool = True, view: bool = False) -> dict:
-    """Run ``robotica run demo`` into ``run_dir``; return its JSON summary."""
-    command = ['robotica', 'run', SCENARIO, '--output-dir', str(run_dir), '--json', '--quiet',
+def demo_run(run_dir: Path, visualisation: bool = True, view: bool = False,
+             scenario: str = SCENARIO) -> dict:
+    """Run ``robotica run demo`` (or ``scenario``) into ``run_dir``; return its JSON summary."""
+    command = ['robotica', 'run', scenario, '--output-dir', str(run_dir), '--json', '--quiet',
                '--visualisation', 'on' if visualisation else 'off']
     if view:
         command += ['--view', '--port', str(VIEW_PORT)]

@@ -33,11 +33,12 @@ from robotica_sim.benchmarks.recorder import RATES, recorder_benchmark
 from robotica_sim.benchmarks.tracking import (format_tracking_table, PATHS, plot_tracking,
                                               POSE_SOURCES, tracking_benchmark, VEHICLES)
 from robotica_sim.benchmarks.visualisation import visualisation_benchmark
+from robotica_sim.benchmarks.your_node import your_node_benchmark
 from robotica_sim.cli.options import integer, path, real
 
 HELP = ('measure the speed of the kinematics, the arm loop, the mobile loop, the tracking '
-        'laws, the recorder or the viewer (robotica bench kin|arm|mobile|tracking|recorder|'
-        'view)')
+        "laws, the recorder, the viewer or a user's node (robotica bench kin|arm|mobile|"
+        'tracking|recorder|view|your_node)')
 EPILOG = """examples:
   robotica bench kin                       1000 configurations per robot, Markdown table
   robotica bench kin --count 200 --json    quicker, machine-readable
@@ -53,8 +54,10 @@ EPILOG = """examples:
   robotica bench view                      the demo 3 times with and 3 without TF and markers,
                                            then once with the Foxglove relay (about 2 min)
   robotica bench view --runs 1 --no-relay
+  robotica bench your_node                 the demo 3 times with the built-in and 3 with a
+                                           Python tracker (robotica new's template)
 """
-SUITES = ('kin', 'arm', 'mobile', 'tracking', 'recorder', 'view')
+SUITES = ('kin', 'arm', 'mobile', 'tracking', 'recorder', 'view', 'your_node')
 # Upper bounds of the sizes: beyond them a benchmark runs for hours (1e7 DDS round trips, a
 # day-long ROS loop) or fills the memory (1e7 batched Jacobians are 2.9 GB), and a typo should
 # not be taken for such a request.
@@ -71,7 +74,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         'mobile = the vehicle loop with every sensor and the EKF, '
                         'tracking = the path-tracking laws on three vehicles, '
                         "recorder = the recorder node's throughput, "
-                        "view = the cost of TF and markers and the relay's throughput")
+                        "view = the cost of TF and markers and the relay's throughput, "
+                        "your_node = the cost of a user's Python tracker in the demo")
     parser.add_argument('--count', type=integer(1, MAX_COUNT), default=1000,
                         help='kin: random configurations per robot; arm: simulated steps of '
                         'the core and DDS round trips (default 1000; arm: at least 5000 steps '
@@ -103,7 +107,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument('--plots', type=path, metavar='DIR',
                         help='tracking: also write the PNG figures into DIR (created)')
     parser.add_argument('--runs', type=integer(1, MAX_VIEW_RUNS), default=3,
-                        help='view: demo runs with and as many without TF and markers '
+                        help='view, your_node: demo runs each way (with and without TF and '
+                        "markers; with robotica's and a user's tracker) "
                         f'(default 3, at most {MAX_VIEW_RUNS})')
     parser.add_argument('--no-relay', action='store_true',
                         help='view: without the run with the Foxglove relay')
@@ -141,6 +146,8 @@ def main(args: argparse.Namespace) -> int:
         return _recorder(args, progress)
     if args.suite == 'view':
         return _view(args, progress)
+    if args.suite == 'your_node':
+        return _your_node(args, progress)
     rows = run_kinematics_benchmark(args.count, args.baseline_ik_count, args.seed, progress)
     if args.json:
         print(json.dumps([dataclasses.asdict(row) for row in rows], indent=2))
@@ -199,6 +206,15 @@ def _view(args: argparse.Namespace, progress) -> int:
         rows = visualisation_benchmark(args.runs, not args.no_relay, progress)
     except (RuntimeError, ValueError) as err:
         print(f'robotica bench: view: {err}', file=sys.stderr)
+        return 1
+    return _print_rows(args, rows)
+
+
+def _your_node(args: argparse.Namespace, progress) -> int:
+    try:
+        rows = your_node_benchmark(args.runs, progress)
+    except RuntimeError as err:
+        print(f'robotica bench: your_node: {err}', file=sys.stderr)
         return 1
     return _print_rows(args, rows)
 
