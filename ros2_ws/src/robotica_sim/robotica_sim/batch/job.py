@@ -16,7 +16,7 @@ import signal
 import subprocess
 import sys
 import time
-from typing import Callable, Optional
+from typing import Any, Callable, Optional
 
 from robotica_sim.grading.entry import grade_bag
 from robotica_sim.grading.rubric import Rubric
@@ -111,10 +111,10 @@ def run_job(job: RunJob) -> dict:
     ``started`` and ``ended`` (seconds since the epoch: while it held its domain), the bag's
     ``metrics``, ``checks`` and ``failed`` checks as :func:`grade_bag` gives them.
     """
-    record = {'run': job.name, 'settings': job.settings, 'domain_id': None,
-              'run_dir': job.run_dir, 'status': 'failed', 'error': None, 'exit_code': None,
-              'wall_time': None, 'started': None, 'ended': None, 'metrics': {}, 'absent': {},
-              'checks': [], 'failed': []}
+    record: dict[str, Any] = {
+        'run': job.name, 'settings': job.settings, 'domain_id': None, 'run_dir': job.run_dir,
+        'status': 'failed', 'error': None, 'exit_code': None, 'wall_time': None,
+        'started': None, 'ended': None, 'metrics': {}, 'absent': {}, 'checks': [], 'failed': []}
     domain, release = _take_domain(job.domain_ids)
     record['domain_id'] = domain
     start = time.monotonic()

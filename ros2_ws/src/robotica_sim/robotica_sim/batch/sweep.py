@@ -20,6 +20,7 @@ import tempfile
 from typing import Any, Optional, Sequence
 
 from robotica_sim.runs.plan import plan_run
+from robotica_sim.runs.roles import ROLE_SECTIONS
 from robotica_sim.runs.scenario import (load_scenario, resolve_scenario_path, Scenario,
                                         ScenarioError)
 from robotica_sim.runs.strict_yaml import read_strict_yaml
@@ -163,6 +164,11 @@ def sweep_runs(scenario: str, variations: Sequence[Variation], seeds: Optional[i
     if not isinstance(base, dict):
         raise ScenarioError(f'{path}: a scenario is a YAML mapping')
     base.setdefault('name', path.stem)
+    for section in ROLE_SECTIONS:   # a user's node keeps running in the scenario's folder
+        values = base.get(section)
+        external = values.get('external') if isinstance(values, dict) else None
+        if isinstance(external, dict):
+            external['folder'] = str(path.parent.resolve() / external.get('folder', '.'))
     for key, value in (fixed or {}).items():
         base = apply_setting(base, key, value)
     combos = [dict(zip(keys, values)) for values in
@@ -171,7 +177,7 @@ def sweep_runs(scenario: str, variations: Sequence[Variation], seeds: Optional[i
     total = len(combos) * len(seed_values)
     if total > MAX_RUNS:
         raise ScenarioError(f'the sweep has {total} runs, more than {MAX_RUNS}')
-    runs = []
+    runs: list[SweepRun] = []
     with tempfile.TemporaryDirectory(prefix='robotica-sweep-') as folder:
         for combo, seed in itertools.product(combos, seed_values):
             settings = {**combo, **({} if seed is None else {'seed': seed})}

@@ -20,11 +20,11 @@ import subprocess
 import sys
 import time
 
-from robotica_sim.cli.new import _NAME, render
 from robotica_sim.cli.options import nonempty, output_problem, path
 from robotica_sim.runs.assignment import (AssignmentError, check_assignment, init_files,
                                           load_assignment)
 from robotica_sim.runs.roles import ROLES
+from robotica_sim.runs.templates import render_template
 
 HELP = 'write and check an assignment folder (robotica assignment init|check)'
 EPILOG = """examples:
@@ -72,9 +72,10 @@ def main(args: argparse.Namespace) -> int:
 
 def _init(args: argparse.Namespace) -> int:
     name = args.name if args.name is not None else f'my_{args.role}'
-    if not _NAME.fullmatch(name):
-        raise AssignmentError(f'--name must be a letter followed by letters, digits or _ (at '
-                              f'most 63), got {name!r}')
+    try:
+        template = render_template(args.role, name)
+    except ValueError as err:
+        raise AssignmentError(f'--name {err}') from None
     folder = args.dir
     if folder.exists() and not folder.is_dir():
         raise AssignmentError(f'{folder} is a file, not a folder')
@@ -85,7 +86,7 @@ def _init(args: argparse.Namespace) -> int:
     if problem:
         raise AssignmentError(problem)
     title = args.title or f'A {args.role.replace("_", " ")} of your own'
-    files = init_files(args.role, name, title, render(args.role, name))
+    files = init_files(args.role, name, title, template)
     for file_name, text in files.items():
         target = folder / file_name
         target.write_text(text)

@@ -10,12 +10,11 @@ docs/your_node.md.
 """
 import argparse
 from pathlib import Path
-import re
 import sys
 
-from ament_index_python.packages import get_package_share_directory, PackageNotFoundError
 from robotica_sim.cli.options import path
 from robotica_sim.runs.roles import ROLES
+from robotica_sim.runs.templates import render_template
 
 HELP = "write a node of your own for a run's role (tracker, estimator, joint_controller)"
 EPILOG = """examples:
@@ -23,8 +22,6 @@ EPILOG = """examples:
   robotica run my_tracker.yaml             run it in the demo, recorded
   robotica new joint_controller pd --output-dir lab3
 """
-_NAME = re.compile(r'[A-Za-z][A-Za-z0-9_]{0,62}')
-_SUFFIXES = {'.py': '{name}.py', '.yaml': '{name}.yaml', '_rubric.yaml': '{name}_rubric.yaml'}
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -38,34 +35,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument('--force', action='store_true', help='overwrite existing files')
 
 
-def template_folder() -> Path:
-    """Return the folder of the shipped templates (share/robotica_sim/templates)."""
-    try:
-        return Path(get_package_share_directory('robotica_sim')) / 'templates'
-    except PackageNotFoundError:
-        raise OSError('package robotica_sim is not installed: source scripts/env.sh '
-                      '(or your workspace) first') from None
-
-
-def render(role: str, name: str) -> dict[str, str]:
-    """
-    Return the files of role ``role``'s template for a node called ``name``: file name, text.
-
-    The template's own name (``my_<role>``: its node, file and scenario name) becomes ``name``.
-    """
-    folder = template_folder()
-    token = f'my_{role}'
-    return {pattern.format(name=name): (folder / f'{role}{suffix}').read_text().replace(
-        token, name) for suffix, pattern in _SUFFIXES.items()}
-
-
 def main(args: argparse.Namespace) -> int:
     """Write the template's files; return the exit code."""
-    if not _NAME.fullmatch(args.name):
-        print(f'robotica new: error: NAME must be a letter followed by letters, digits or _ '
-              f'(at most 63), got {args.name!r}', file=sys.stderr)
+    try:
+        files = render_template(args.role, args.name)
+    except ValueError as err:
+        print(f'robotica new: error: NAME {err}', file=sys.stderr)
         return 2
-    files = render(args.role, args.name)
     existing = [str(args.output_dir / f) for f in files if (args.output_dir / f).exists()]
     if existing and not args.force:
         print(f'robotica new: error: {", ".join(existing)} exist(s) already (--force '

@@ -331,7 +331,9 @@ def _simulate(args, scenario, plan: list[NodeSpec], run_dir: Path,
     names = [spec.name for spec in nodes]
     for spec in nodes:
         try:
-            supervisor.start(spec.name, _argv(spec, run_dir / 'params.yaml'), cwd=spec.cwd)
+            # The params file absolute: a user's command runs in its scenario's folder.
+            argv = _argv(spec, (run_dir / 'params.yaml').resolve())
+            supervisor.start(spec.name, argv, cwd=spec.cwd)
         except OSError as err:   # a user's command removed since the plan checked it
             raise RunFailed(f'cannot start {spec.label}: {err.strerror or err}') from None
     _log(args, f'started {len(nodes)} nodes (domain {os.environ["ROS_DOMAIN_ID"]}), '

@@ -211,7 +211,7 @@ def _role_check(assignment: Assignment, name: str, scenario: Scenario) -> Assign
                                f'{role.section}: {{external: {{command: [...]}}}}; its roles '
                                f'of users: {others}')
     command = given[0][1].command
-    folder = Path(scenario.source).parent
+    folder = Path(scenario.source or '.').parent
     template = assignment.path(assignment.template).resolve()
     if not any((folder / word).resolve() == template for word in command):
         return AssignmentCheck(subject, False, f'the {role.name} runs {" ".join(command)!r}, '

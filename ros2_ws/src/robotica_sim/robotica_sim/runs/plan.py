@@ -325,7 +325,9 @@ def external_node(scenario: Scenario, node: NodeSpec) -> NodeSpec:
         return node
     spec = getattr(scenario, role.section).external
     where = f'{scenario.source or scenario.name}: {role.section}.external'
-    folder = Path(scenario.source).parent if scenario.source else Path.cwd()
+    folder = (Path(scenario.source).parent if scenario.source else Path.cwd()) / spec.folder
+    if not folder.is_dir():
+        raise ScenarioError(f'{where}.folder: no folder {str(folder)!r}')
     for name, value in spec.parameters.items():
         if not isinstance(name, str) or not _PARAMETER_NAME.fullmatch(name) \
                 or name == 'use_sim_time':

@@ -111,9 +111,10 @@ class ExternalSpec:
     """
     A user's own node in a role of the run (docs/your_node.md), instead of robotica's.
 
-    The command runs in the scenario file's folder, with ``--ros-args`` added: the node is
-    renamed to the role's node name, gets ``parameters`` (and ``use_sim_time``) from the run's
-    parameter file and the ``remappings`` (its topic name -> a topic of the role's contract).
+    The command runs in ``folder`` (default: the scenario file's), with ``--ros-args`` added:
+    the node is renamed to the role's node name, gets ``parameters`` (and ``use_sim_time``)
+    from the run's parameter file and the ``remappings`` (its topic name -> a topic of the
+    role's contract).
     """
 
     command: tuple[str, ...] = ()                  # argv, e.g. [python3, my_tracker.py]
@@ -121,6 +122,8 @@ class ExternalSpec:
     remappings: dict = field(default_factory=dict)     # its name -> the contract's name
     answer_timeout: float = 5.0                    # [s] wall clock: the longest wait for an
     #                                                answer (the first, and every later one)
+    folder: str = ''                               # where it runs; '' or relative: from the
+    #                                                scenario file's folder
 
 
 @dataclass(frozen=True)

@@ -8,6 +8,7 @@ import pytest
 from robotica_sim.batch.sweep import (apply_setting, parse_domain_ids, parse_vary, sweep_runs,
                                       Variation, write_scenarios)
 from robotica_sim.runs.scenario import load_scenario, ScenarioError
+from robotica_sim.runs.templates import render_template
 
 
 def test_vary_values_are_yaml():
@@ -99,3 +100,17 @@ def test_domain_id_pools(text, ids):
 def test_bad_domain_id_pools(text):
     with pytest.raises(ValueError):
         parse_domain_ids(text)
+
+
+def test_a_users_node_keeps_running_in_its_scenarios_folder(tmp_path):
+    lab = tmp_path / 'lab'
+    lab.mkdir()
+    for file_name, text in render_template('tracker', 'mine').items():
+        (lab / file_name).write_text(text)
+    runs = sweep_runs(str(lab / 'mine.yaml'),
+                      [parse_vary('tracker.external.parameters.heading_gain=0.5,2')])
+    files = write_scenarios(runs, tmp_path / 'sweep' / 'scenarios')   # another folder
+    for run, gain in zip(runs, (0.5, 2.0)):
+        external = load_scenario(str(files[run.name])).tracker.external
+        assert external.folder == str(lab)
+        assert external.parameters['heading_gain'] == gain

@@ -2,17 +2,18 @@
 from pathlib import Path
 
 import pytest
-from robotica_sim.cli.new import render
 from robotica_sim.runs.assignment import (AssignmentError, check_assignment, init_files,
                                           load_assignment, MANIFEST, RUBRIC_FILE, SCENARIO_FILE,
                                           STATEMENT_FILE)
 from robotica_sim.runs.scenario import load_scenario
+from robotica_sim.runs.templates import render_template
 
 
 def write_assignment(folder: Path, role: str = 'tracker', name: str = 'lab_node') -> Path:
     """Write the assignment ``init`` writes for ``role`` into ``folder``; return it."""
     folder.mkdir(parents=True, exist_ok=True)
-    for file_name, text in init_files(role, name, 'Lab 3: yours', render(role, name)).items():
+    files = init_files(role, name, 'Lab 3: yours', render_template(role, name))
+    for file_name, text in files.items():
         (folder / file_name).write_text(text)
     return folder
 
@@ -68,7 +69,8 @@ def test_a_title_with_yaml_syntax_is_read_back_as_written(tmp_path):
     folder = tmp_path / 'lab'
     folder.mkdir()
     title = 'Lab: #3 "quotes", [brackets] & a very long title that goes past the comments'
-    for file_name, text in init_files('tracker', 'n', title, render('tracker', 'n')).items():
+    files = init_files('tracker', 'n', title, render_template('tracker', 'n'))
+    for file_name, text in files.items():
         (folder / file_name).write_text(text)
     assert load_assignment(folder).title == title
 

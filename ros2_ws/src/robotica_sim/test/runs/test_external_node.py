@@ -1,4 +1,4 @@
-"""Tests of a user's node in a scenario: runs.scenario's ``external`` key and runs.plan's checks."""
+"""Tests of a user's node in a scenario: the ``external`` key and the plan's checks of it."""
 from pathlib import Path
 import sys
 import textwrap
@@ -35,12 +35,12 @@ def by_name(nodes):
 
 
 def test_an_external_tracker_replaces_the_path_tracker(tmp_path):
-    nodes = by_name(plan_run(load_scenario(scenario_with(tmp_path, 'tracker', '''
+    nodes = by_name(plan_run(load_scenario(scenario_with(tmp_path, 'tracker', """
         external:
           command: [python3, mine.py, --fast]
           parameters: {gain: 2.0, names: [a, b], enabled: true}
           remappings: {my_cmd: cmd_vel, errors: ~/tracking_error}
-    '''))))
+    """))))
     tracker = nodes['path_tracker']
     assert tracker.role == 'tracker' and tracker.package == ''
     assert Path(tracker.command[0]).name.startswith('python3')
@@ -65,9 +65,9 @@ def test_optional_outputs_are_recorded_not_awaited(tmp_path):
 
 
 def test_an_external_estimator(tmp_path):
-    scenario = load_scenario(scenario_with(tmp_path, 'odometry', '''
+    scenario = load_scenario(scenario_with(tmp_path, 'odometry', """
         external: {command: [python3, mine.py], answer_timeout: 2.0}
-    '''))
+    """))
     assert scenario.odometry.external.answer_timeout == 2.0
     assert by_name(plan_run(scenario))['odometry'].role == 'estimator'
 
@@ -91,7 +91,7 @@ def test_an_external_estimator(tmp_path):
     ('tracker', 'external: {command: [ls], parameters: {use_sim_time: false}}',
      'use_sim_time is set by the run'),
     ('tracker', 'external: {command: [ls], parameters: {gain: [1, a]}}',
-     'tracker.external.parameters.gain: [1, \'a\'] is not a parameter value'),
+     "tracker.external.parameters.gain: [1, 'a'] is not a parameter value"),
     ('tracker', 'external: {command: [ls], parameters: {gain: .nan}}',
      'tracker.external.parameters.gain: nan is not a parameter value'),
     ('tracker', 'law: pure_pursuit\nexternal: {command: [ls]}',
@@ -102,8 +102,8 @@ def test_an_external_estimator(tmp_path):
      'tracker.external: unknown key(s) unknown'),
     ('path', 'shape: circle\nexternal: {command: [ls]}', 'path (circle)'),
 ])
-def test_a_bad_external_node_is_refused_before_anything_starts(tmp_path, section, body,
-                                                                  message):
+def test_a_bad_external_node_is_refused_before_anything_starts(
+        tmp_path, section, body, message):
     with pytest.raises(ScenarioError, match='^' + str(tmp_path / 'scenario.yaml')) as err:
         plan_run(load_scenario(scenario_with(tmp_path, section, body + '\n')))
     assert message in str(err.value)
@@ -117,3 +117,16 @@ def test_an_executable_path_from_the_scenarios_folder(tmp_path):
     tracker = by_name(plan_run(load_scenario(path)))['path_tracker']
     assert tracker.command == (str(tmp_path / 'node.sh'),) and tracker.label == 'node.sh'
     assert sys.executable   # the interpreter the tests run: python3 is on PATH beside it
+
+
+def test_the_folder_it_runs_in(tmp_path):
+    (tmp_path / 'nodes').mkdir()
+    (tmp_path / 'nodes' / 'other.py').write_text('print("a node")\n')
+    path = scenario_with(tmp_path, 'tracker',
+                         'external: {command: [python3, other.py], folder: nodes}\n')
+    tracker = by_name(plan_run(load_scenario(path)))['path_tracker']
+    assert tracker.cwd == str(tmp_path / 'nodes')
+    path = scenario_with(tmp_path, 'tracker',
+                         'external: {command: [python3, other.py], folder: gone}\n')
+    with pytest.raises(ScenarioError, match="tracker.external.folder: no folder '.*gone'"):
+        plan_run(load_scenario(path))

@@ -1,6 +1,6 @@
 """Tests of robotica_sim.runs.roles: the contract of each role a user's node can take."""
 import pytest
-from robotica_sim.runs.roles import (COMMAND, LATCHED, ROLE_SECTIONS, role_contract, ROLES,
+from robotica_sim.runs.roles import (COMMAND, LATCHED, role_contract, ROLE_SECTIONS, ROLES,
                                      STREAM, topic_name)
 
 
