@@ -4,8 +4,8 @@ A user's own node in a run (docs/your_node.md): the templates pass, broken nodes
 Each template that ``robotica new`` writes runs unchanged in its lockstep scenario and passes
 its rubric (``robotica grade`` exit 0), and the bag shows that the user's node, not robotica's,
 published the role's answer. Deliberately broken trackers (one never publishes, one publishes
-NaN, one dies at t = 3 s, one exits at once) end the run with exit 1 and one message that names
-the node, what it did and the contract, and leave no process behind.
+NaN, one hangs at t = 2 s, one dies at t = 3 s, one exits at once) end the run with exit 1 and
+one message that names the node, what it did and the contract, and leave no process behind.
 """
 import json
 import subprocess
@@ -66,6 +66,12 @@ BROKEN = {
         def on_odom(self, msg):
             self.pub.publish(Twist(linear=Vector3(x=math.nan)))
     """,
+    'hangs': """
+        def on_odom(self, msg):
+            if msg.header.stamp.sec >= 2:
+                time.sleep(3600)   # a callback that never returns
+            self.pub.publish(Twist())
+    """,
     'dies': """
         def on_odom(self, msg):
             if msg.header.stamp.sec >= 3:
@@ -81,6 +87,7 @@ def broken_tracker(folder, kind: str) -> None:
     (folder / f'{kind}.py').write_text(textwrap.dedent('''\
         import math
         import os
+        import time
 
         from geometry_msgs.msg import Twist, Vector3
         from nav_msgs.msg import Odometry
@@ -119,6 +126,8 @@ def still_running(script) -> str:
                 'The contract of a tracker is: in: odom (nav_msgs/msg/Odometry, stream)']),
     ('nan', ['`nan.py` published a cmd_vel with a non-finite linear.x (seen by t = ',
              'The contract of a tracker is']),
+    ('hangs', ['`hangs.py` stopped answering: no cmd_vel for 2 s since t = 2.',
+               'it subscribes to: /odom']),
     ('dies', ['`dies.py` (the tracker) exited with code 1 at t = 3.']),
 ])
 def test_broken_tracker_is_named(tmp_path, ros_domain, kind, says):

@@ -112,7 +112,9 @@ class ContractWatch:
             if a.count == 0 and now - started > a.timeout:
                 return (f'{name} never published {a.role.answer} for step 0 within '
                         f'{a.timeout:g} s; {self._graph(a)}. {self._contract(a)}')
-            if a.count and now - a.last > a.timeout:
+            if a.count and now - a.last > a.timeout and sim_time > a.last_sim:
+                # (the simulator went on without it: one step per lockstep.timeout; a stalled
+                # simulator, whose time stands still, is not this node's fault)
                 return (f'{name} stopped answering: no {a.role.answer} for {a.timeout:g} s '
                         f'since t = {a.last_sim:.3f} s ({a.count} answers); {self._graph(a)}. '
                         f'{self._contract(a)}')

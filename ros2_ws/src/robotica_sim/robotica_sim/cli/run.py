@@ -240,7 +240,7 @@ def _died(supervisor: ProcessSupervisor, names: list[str]) -> Optional[tuple[str
 def _death(supervisor: ProcessSupervisor, name: str, code: int,
            watch: Optional[ContractWatch] = None, sim_time: Optional[float] = None
            ) -> RunFailed:
-    who = (watch.label(name) if watch else None) or f'node {name}'
+    who = (watch.label(name) if watch is not None else None) or f'node {name}'
     when = '' if sim_time is None else f' at t = {sim_time:.2f} s'
     return RunFailed(f'{who} {_exit_text(code)}{when} before the end:\n' + supervisor.tail(name))
 
