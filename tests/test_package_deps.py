@@ -25,7 +25,7 @@ ROSDEP_KEYS = {
     'rosbags': 'python3-rosbags-pip', 'mcap': 'python3-mcap-pip',
     'foxglove': 'python3-foxglove-sdk-pip', 'websockets': 'python3-websockets-pip',
     'yourdfpy': 'python3-yourdfpy-pip', 'pyarrow': 'python3-pyarrow-pip',
-    'distributed': 'python3-distributed',
+    'distributed': 'python3-distributed', 'psutil': 'python3-psutil',
 }
 # Imported by tests from the repository's tests/ folder (pytest.ini's pythonpath), not packages.
 REPOSITORY_MODULES = {'reference_models', 'conftest'}

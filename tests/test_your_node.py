@@ -128,7 +128,7 @@ def still_running(script) -> str:
              'The contract of a tracker is']),
     ('hangs', ['`hangs.py` stopped answering: no cmd_vel for 2 s since t = 2.',
                'it subscribes to: /odom']),
-    ('dies', ['`dies.py` (the tracker) exited with code 1 at t = 3.']),
+    ('dies', ['`dies.py` (the tracker) exited with code 1 by t = 3.']),
 ])
 def test_broken_tracker_is_named(tmp_path, ros_domain, kind, says):
     broken_tracker(tmp_path, kind)

@@ -24,6 +24,9 @@ from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
 
 LATCHED = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,
                      durability=DurabilityPolicy.TRANSIENT_LOCAL)
+# A command: reliable, volatile; a history of 500, so that the run's recorder, when it falls
+# behind for a moment, still gets every command (with 10 a loaded machine lost some).
+COMMAND = QoSProfile(depth=500, reliability=ReliabilityPolicy.RELIABLE)
 SEARCH_WINDOW = 40   # path points searched ahead of the previous closest one
 
 
@@ -41,7 +44,7 @@ class HeadingTracker(Node):
         self.closest = 0
         self.create_subscription(Path, 'path', self.on_path, LATCHED)
         self.create_subscription(Odometry, 'odom', self.on_odom, 10)
-        self.cmd_pub = self.create_publisher(Twist, 'cmd_vel', 10)
+        self.cmd_pub = self.create_publisher(Twist, 'cmd_vel', COMMAND)
 
     def on_path(self, msg: Path) -> None:
         """Keep the path's points [m] (in its frame, odom)."""

@@ -55,6 +55,7 @@ SAFE_STOP = 1.0      # [s] simulated after a node died: the simulator's cmd_time
 SAFE_STOP_WALL = 5.0     # [s] wall clock, the longest wait for that stop
 MIN_TIMEOUT = 1.0        # [s] wall clock: a shorter wait cannot cover one start of the nodes
 WATCH_PERIOD = 0.1   # [s] wall clock between two looks at the run (clock, progress, faults)
+CLOCK_REFRESH = 5    # spins (10 ms each at most) for the newest /clock before a fault's time
 STOP_FIRST = ['simulator']   # no step without its controllers; then every other node at once
 STOP_LAST = ['recorder']     # it records what the others publish until they stop
 
@@ -241,7 +242,7 @@ def _death(supervisor: ProcessSupervisor, name: str, code: int,
            watch: Optional[ContractWatch] = None, sim_time: Optional[float] = None
            ) -> RunFailed:
     who = (watch.label(name) if watch is not None else None) or f'node {name}'
-    when = '' if sim_time is None else f' at t = {sim_time:.2f} s'
+    when = '' if sim_time is None else f' by t = {sim_time:.2f} s'
     return RunFailed(f'{who} {_exit_text(code)}{when} before the end:\n' + supervisor.tail(name))
 
 
@@ -371,9 +372,14 @@ def _simulate(args, scenario, plan: list[NodeSpec], run_dir: Path,
             _progress(args, sim_time[0], scenario.duration)
             if fault is None:
                 broken = watch.failure(sim_time[0], start)
-                if broken:   # the simulator has braked (a NaN) or holds its step: end now
-                    raise RunFailed(broken)
                 fault = _died(supervisor, others)
+                if broken or fault is not None:
+                    # The message gives the time: take the newest /clock, not the last look's
+                    # (a simulated second old at 10x real time).
+                    for _ in range(CLOCK_REFRESH):
+                        executor.spin_once(timeout_sec=0.01)
+                if broken:   # the simulator has braked (a NaN) or holds its step: end now
+                    raise RunFailed(watch.failure(sim_time[0], start) or broken)
                 if fault is not None:
                     fault_time = sim_time[0]
                     if fault[0] == 'recorder':
