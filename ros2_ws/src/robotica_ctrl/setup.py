@@ -25,6 +25,7 @@ setup(
             'path_publisher = robotica_ctrl.nodes.path_publisher:main',
             'joint_controller = robotica_ctrl.nodes.joint_controller:main',
             'joint_trajectory_publisher = robotica_ctrl.nodes.joint_trajectory_publisher:main',
+            'reactive_navigator = robotica_ctrl.nodes.reactive_navigator:main',
         ],
     },
 )

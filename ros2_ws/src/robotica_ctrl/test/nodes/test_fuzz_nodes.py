@@ -19,7 +19,7 @@ from robotica_kin.ros.convert import path_message, seconds_to_stamp
 from robotica_kin.ros.hostile import fuzz
 from robotica_kin.ros.qos import LATCHED_QOS
 from robotica_msgs.msg import JointControllerState, TrackingError
-from sensor_msgs.msg import JointState
+from sensor_msgs.msg import JointState, LaserScan
 from std_msgs.msg import Float64MultiArray
 from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
 
@@ -54,6 +54,15 @@ def _path(t):
     return path_message(np.column_stack([0.1 * np.arange(101), np.zeros(101)]), 'odom')
 
 
+def _wall_scan(t):
+    """Return a laser scan of a wall 0.7 m to the left (y = 0.7), beams from -90° to 90°."""
+    msg = _stamped(LaserScan(angle_min=-math.pi / 2, angle_increment=math.pi / 180,
+                             range_min=0.05, range_max=4.0), t)
+    angles = [msg.angle_min + k * msg.angle_increment for k in range(181)]
+    msg.ranges = [0.7 / math.sin(a) if math.sin(a) > 0.7 / 4.0 else math.inf for a in angles]
+    return msg
+
+
 CASES = {
     'joint_controller': (
         [], {'joint_states': (JointState, _joint_state),
@@ -69,6 +78,10 @@ CASES = {
         lambda got: any(m.header.stamp.sec >= 100 and m.cross_track == pytest.approx(0.5)
                         for m in got['/path_tracker/tracking_error'][-20:])
         and got['cmd_vel'][-1].linear.x > 0.0),
+    'reactive_navigator': (
+        [], {'odom': (Odometry, _odom), 'scan': (LaserScan, _wall_scan)},
+        {'cmd_vel': Twist},
+        lambda got: bool(got['cmd_vel']) and got['cmd_vel'][-1].linear.x > 0.0),
 }
 
 
