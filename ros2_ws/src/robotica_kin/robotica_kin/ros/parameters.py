@@ -5,9 +5,10 @@ Every robotica node declares its parameters through :func:`declare`, so that eac
 ``ParameterDescriptor`` (description with unit and book symbol, range, read-only flag) and rclpy
 refuses an out-of-range value at start-up and at run time (STYLE.md §5).
 """
-from typing import Any, Mapping, Optional
+from typing import Any, Callable, Mapping, Optional
 
-from rcl_interfaces.msg import FloatingPointRange, IntegerRange, ParameterDescriptor
+from rcl_interfaces.msg import (FloatingPointRange, IntegerRange, ParameterDescriptor,
+                                SetParametersResult)
 from rclpy.node import Node
 from robotica_kin.parameter_specs import ParameterSpec
 
@@ -51,3 +52,35 @@ def declare_specs(node: Node, specs: Mapping[str, ParameterSpec], *,
             low=None if is_list else spec.low, high=None if is_list else spec.high,
             read_only=read_only)
     return values
+
+
+def check_on_set(node: Node, values: dict[str, Any], build: Callable[[dict[str, Any]], Any],
+                 apply: Callable[[Any], None]) -> None:
+    """
+    Check each run-time set of the parameters named in ``values`` and apply what passes.
+
+    ``values`` holds the node's current values of those parameters (it is updated in place);
+    ``build`` turns a whole set of them into the core's object (a params dataclass) and raises
+    ValueError for an invalid one: a set is refused with that reason (STYLE.md §5, never
+    accepted and ignored), an accepted one is built again and handed to ``apply``. Other
+    parameters are left to their own callbacks.
+    """
+    def changes(parameters) -> dict[str, Any]:
+        return {p.name: p.value for p in parameters if p.name in values}
+
+    def validate(parameters) -> SetParametersResult:
+        try:   # the ranges and the core's own checks, on a throw-away copy
+            build({**values, **changes(parameters)})
+        except ValueError as err:
+            return SetParametersResult(successful=False, reason=str(err))
+        return SetParametersResult(successful=True)
+
+    def post_set(parameters) -> None:
+        changed = changes(parameters)
+        if changed:
+            values.update(changed)
+            apply(build(values))
+            node.get_logger().info(f'parameters changed: {changed}')
+
+    node.add_on_set_parameters_callback(validate)
+    node.add_post_set_parameters_callback(post_set)

@@ -10,6 +10,15 @@ reproducible from ``seed``. A fix is published when its latency has elapsed in s
 stamped with the time of the position it reports; latitude and longitude come from
 :class:`robotica_kin.geodetic.GeodeticOrigin` (WGS-84). The covariance is the model's total
 error covariance in ENU (``COVARIANCE_TYPE_KNOWN``); the status is the preset's solution type.
+
+Every term of the receiver is a parameter (``horizontal_stddev``, ``vertical_stddev``,
+``correlation_time``, ``white_stddev``, ``update_rate``, ``latency``, ``dropout.probability``,
+``dropout.mean_duration``, ``status``: :data:`GPS_TERMS`). The node reads ``preset`` first and
+declares each term with the preset's value as its default, so a value given explicitly (``-p``,
+``--params-file``, a scenario) overrides the preset's and an absent one keeps it. The terms are
+checked at start-up (exit 2 with one line) and may be set at run time: a set is refused with the
+reason unless the whole :class:`GpsParams` is valid (``white_stddev`` within both stddevs, an
+outage of at least one fix period), and an accepted one applies from the next fix on.
 """
 from collections import deque
 import math
@@ -21,9 +30,10 @@ from robotica_kin.bounds import StampGate
 from robotica_kin.ros.convert import seconds_to_stamp, stamp_to_seconds
 from robotica_kin.ros.entry_point import run_node
 from robotica_kin.ros.guarded import GuardedNode
-from robotica_kin.ros.parameters import declare, declare_specs
+from robotica_kin.ros.parameters import check_on_set, declare, declare_specs
 from robotica_kin.ros.qos import STREAM_PUB_QOS, STREAM_REPLAY_SUB_QOS
-from robotica_sim.sensors.gps import gps_configuration, GPS_PARAMETERS, GpsFix, GpsModel
+from robotica_sim.sensors.gps import (gps_configuration, GPS_PARAMETERS, gps_params,
+                                      gps_term_specs, GPS_TERMS, GpsFix, GpsModel)
 from sensor_msgs.msg import NavSatFix, NavSatStatus
 
 
@@ -32,7 +42,9 @@ class GpsEmulatorNode(GuardedNode):
 
     def __init__(self) -> None:
         super().__init__('gps_emulator')
-        values = declare_specs(self, GPS_PARAMETERS)
+        values = declare_specs(self, {k: v for k, v in GPS_PARAMETERS.items()
+                                      if k not in GPS_TERMS})
+        values.update(declare_specs(self, gps_term_specs(values['preset']), read_only=False))
         self._params, self._origin = gps_configuration(values)
         self._model = GpsModel(self._params, values['seed'])
         self._antenna_height = values['antenna_height']
@@ -47,6 +59,11 @@ class GpsEmulatorNode(GuardedNode):
             f'preset {values["preset"]!r}: sigma {self._params.horizontal_stddev:.3g} m per '
             f'horizontal axis, {self._params.update_rate:g} Hz, latency '
             f'{self._params.latency:g} s')
+        check_on_set(self, {name: values[name] for name in GPS_TERMS},
+                     lambda terms: gps_params({**values, **terms}), self._set_params)
+
+    def _set_params(self, params) -> None:
+        self._params = self._model.params = params
 
     def _on_truth(self, msg: Odometry) -> None:
         t = stamp_to_seconds(msg.header.stamp)

@@ -10,6 +10,15 @@ message carries the angular velocity in ``frame_id`` and, as its covariance, the
 variance per sample (the honest figure of one reading; the slowly wandering bias is not white
 and is left to the estimator); orientation and linear acceleration are marked "not provided"
 (covariance element 0 = -1, as sensor_msgs/Imu defines).
+
+Every error term of the model is a parameter (``noise_density``, ``bias_instability``,
+``bias_correlation_time``, ``random_walk``, ``initial_bias``, ``initial_bias_stddev``,
+``scale_factor_error``, ``saturation``, ``resolution``: :data:`GYRO_TERMS`). The node reads
+``preset`` first and declares each term with the preset's value as its default, so a value
+given explicitly (``-p``, ``--params-file``, a scenario) overrides the preset's and an absent
+one keeps it. The terms are checked at start-up (exit 2 with one line) and may be set at run
+time: a set is refused with the reason unless the whole :class:`GyroParams` is valid, and an
+accepted one applies from the next sample on.
 """
 from nav_msgs.msg import Odometry
 import numpy as np
@@ -18,9 +27,10 @@ from robotica_kin.bounds import StampGate
 from robotica_kin.ros.convert import stamp_to_seconds
 from robotica_kin.ros.entry_point import run_node
 from robotica_kin.ros.guarded import GuardedNode
-from robotica_kin.ros.parameters import declare, declare_specs
+from robotica_kin.ros.parameters import check_on_set, declare, declare_specs
 from robotica_kin.ros.qos import STREAM_PUB_QOS, STREAM_REPLAY_SUB_QOS
-from robotica_sim.sensors.gyro import GYRO_PARAMETERS, gyro_params, GyroModel
+from robotica_sim.sensors.gyro import (GYRO_PARAMETERS, gyro_params, gyro_term_specs,
+                                       GYRO_TERMS, GyroModel)
 from sensor_msgs.msg import Imu
 
 
@@ -29,7 +39,8 @@ class GyroEmulatorNode(GuardedNode):
 
     def __init__(self) -> None:
         super().__init__('gyro_emulator')
-        values = declare_specs(self, GYRO_PARAMETERS)
+        values = declare_specs(self, {k: GYRO_PARAMETERS[k] for k in ('preset', 'seed')})
+        values.update(declare_specs(self, gyro_term_specs(values['preset']), read_only=False))
         params = gyro_params(values)
         self._axes = [GyroModel(params, np.random.default_rng(s))
                       for s in np.random.SeedSequence(values['seed']).spawn(3)]
@@ -40,7 +51,13 @@ class GyroEmulatorNode(GuardedNode):
         self._pub = self.create_publisher(Imu, 'imu/data', STREAM_PUB_QOS)
         self.create_subscription(Odometry, 'ground_truth/odom', self._on_truth,
                                  STREAM_REPLAY_SUB_QOS)
+        check_on_set(self, {name: values[name] for name in GYRO_TERMS},
+                     lambda terms: gyro_params({**values, **terms}), self._set_params)
         self.get_logger().info(f'gyro preset {values["preset"]!r}')
+
+    def _set_params(self, params) -> None:
+        for axis in self._axes:
+            axis.params = params
 
     def _on_truth(self, msg: Odometry) -> None:
         t = stamp_to_seconds(msg.header.stamp)

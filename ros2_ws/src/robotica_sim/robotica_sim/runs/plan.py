@@ -36,8 +36,8 @@ from robotica_sim.runs.roles import Role, role_contract, ROLE_SECTIONS, topic_na
 from robotica_sim.runs.scenario import ExternalSpec, Scenario, ScenarioError
 from robotica_sim.sensors.compass import compass_params
 from robotica_sim.sensors.encoder import encoder_params
-from robotica_sim.sensors.gps import gps_configuration, gps_preset
-from robotica_sim.sensors.gyro import gyro_params
+from robotica_sim.sensors.gps import gps_configuration, gps_params, GPS_TERMS
+from robotica_sim.sensors.gyro import gyro_params, GYRO_TERMS
 from robotica_sim.simulation.arm import arm_simulation
 from robotica_sim.simulation.vehicle import vehicle_simulation
 
@@ -490,14 +490,14 @@ def _mobile_sensors(scenario: Scenario) -> list[NodeSpec]:
             'left_wheel_joint': left, 'right_wheel_joint': right},   # as the simulator's
          'sensors.encoders', encoder_params)]
     if sensors.gyro.enabled:
-        emulators.append(('gyro', {'preset': sensors.gyro.preset}, 'sensors.gyro', gyro_params))
+        emulators.append(('gyro', _gyro_parameters(scenario), 'sensors.gyro', gyro_params))
     if sensors.compass.enabled:
         emulators.append(('compass', {'noise_stddev': sensors.compass.noise_stddev,
                                       'hard_iron': _floats(sensors.compass.hard_iron),
                                       'tilt_error': sensors.compass.tilt_error},
                           'sensors.compass', compass_params))
     if sensors.gps.enabled:
-        emulators.append(('gps', {'preset': sensors.gps.preset, **_origin(scenario)},
+        emulators.append(('gps', {**_gps_parameters(scenario), **_origin(scenario)},
                           'sensors.gps', gps_configuration))
     nodes = []
     for sensor, params, section, configuration in emulators:
@@ -510,6 +510,22 @@ def _mobile_sensors(scenario: Scenario) -> list[NodeSpec]:
     return nodes
 
 
+def _gyro_parameters(scenario: Scenario) -> dict:
+    """Return the gyro emulator's preset and the error terms the scenario gives (not None)."""
+    gyro = scenario.sensors.gyro
+    return {'preset': gyro.preset, **{name: getattr(gyro, name) for name in GYRO_TERMS
+                                      if getattr(gyro, name) is not None}}
+
+
+def _gps_parameters(scenario: Scenario) -> dict:
+    """Return the GPS emulator's preset and the terms the scenario gives (``dropout.*``)."""
+    gps = scenario.sensors.gps
+    given = {name: getattr(gps.dropout if name.startswith('dropout.') else gps,
+                           name.removeprefix('dropout.')) for name in GPS_TERMS}
+    return {'preset': gps.preset,
+            **{name: value for name, value in given.items() if value is not None}}
+
+
 def _origin(scenario: Scenario) -> dict:
     latitude, longitude, altitude = scenario.sensors.gps.origin
     return {'origin.latitude': latitude, 'origin.longitude': longitude,
@@ -520,7 +536,7 @@ def _gps_bias(scenario: Scenario) -> dict:
     """Return the odometry's model of the GPS error: the receiver preset's, when it fuses GPS."""
     if not scenario.odometry.fuse_gps:
         return {}
-    params = gps_preset(scenario.sensors.gps.preset)
+    params = gps_params(_gps_parameters(scenario))   # checked with the emulator's
     return {'gps_bias.stddev': float(params.correlated_stddev[0]),
             'gps_bias.correlation_time': params.correlation_time,
             'gps_bias.white_stddev': params.white_stddev}
@@ -604,6 +620,7 @@ def _plan_mobile(scenario: Scenario) -> list[NodeSpec]:
         'end_time': scenario.duration, 'autostart': False, **pose}
     _node_check(where, 'robot', SIMULATOR_KEYS,
                 lambda: vehicle_simulation(simulator, scenario.step_period))
+    sensors = _mobile_sensors(scenario)   # checked before the odometry's GPS model uses them
     odometry = scenario.odometry
     estimator = {
         'wheel_radius': robot.wheel_radius * (1.0 + odometry.wheel_radius_error),
@@ -621,7 +638,7 @@ def _plan_mobile(scenario: Scenario) -> list[NodeSpec]:
             'x': [p[0] for p in points], 'y': [p[1] for p in points],
             **({} if times is None else {'t': times}),
             'frame_id': scenario.path.frame_id}, use_sim_time=False),
-        *_mobile_sensors(scenario),
+        *sensors,
         NodeSpec('robotica_sim', 'odometry', 'odometry', estimator),
         NodeSpec('robotica_ctrl', 'path_tracker', 'path_tracker',
                  {'law': scenario.tracker.law, **gains,

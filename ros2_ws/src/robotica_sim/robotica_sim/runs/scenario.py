@@ -71,10 +71,24 @@ class EncoderSpec:
 
 @dataclass(frozen=True)
 class GyroSpec:
-    """The gyroscope (book §7.7.3): a grade of ``robotica_sim.sensors.gyro.GYRO_PRESETS``."""
+    """
+    The gyroscope (book §7.7.3): a grade of ``robotica_sim.sensors.gyro.GYRO_PRESETS``.
+
+    Each error term left out (None) is the preset's; one given overrides it (the node's
+    parameter of that name, ``robotica_sim.sensors.gyro.GYRO_TERMS``, checked by the plan).
+    """
 
     enabled: bool = False
     preset: str = 'mems_consumer'
+    noise_density: Optional[float] = None          # N [rad/s/√Hz]
+    bias_instability: Optional[float] = None       # σ_b [rad/s]
+    bias_correlation_time: Optional[float] = None  # T [s]
+    random_walk: Optional[float] = None            # K [rad/s^1.5]
+    initial_bias: Optional[float] = None           # [rad/s]
+    initial_bias_stddev: Optional[float] = None    # [rad/s]
+    scale_factor_error: Optional[float] = None     # s [-]
+    saturation: Optional[float] = None             # [rad/s]
+    resolution: Optional[float] = None             # [rad/s]
 
 
 @dataclass(frozen=True)
@@ -88,12 +102,33 @@ class CompassSpec:
 
 
 @dataclass(frozen=True)
+class GpsDropoutSpec:
+    """The GPS signal outages (None: the preset's)."""
+
+    probability: Optional[float] = None            # p [-] of losing the signal at each fix
+    mean_duration: Optional[float] = None          # D [s] mean outage
+
+
+@dataclass(frozen=True)
 class GpsSpec:
-    """The GPS receiver (book §7.7.5): a preset of ``robotica_sim.sensors.gps.GPS_PRESETS``."""
+    """
+    The GPS receiver (book §7.7.5): a preset of ``robotica_sim.sensors.gps.GPS_PRESETS``.
+
+    Each term left out (None) is the preset's; one given overrides it (the node's parameter of
+    that name, ``robotica_sim.sensors.gps.GPS_TERMS``, checked by the plan).
+    """
 
     enabled: bool = False
     preset: str = 'dgps'
     origin: tuple[float, ...] = (37.41, -6.0, 10.0)    # latitude, longitude [deg], height [m]
+    horizontal_stddev: Optional[float] = None      # σ_h [m] per axis, total
+    vertical_stddev: Optional[float] = None        # σ_v [m], total
+    correlation_time: Optional[float] = None       # τ [s] of the Gauss–Markov part
+    white_stddev: Optional[float] = None           # σ_w [m], white part
+    update_rate: Optional[float] = None            # [Hz]
+    latency: Optional[float] = None                # [s]
+    dropout: GpsDropoutSpec = GpsDropoutSpec()
+    status: Optional[str] = None                   # fix, dgps or rtk
 
 
 @dataclass(frozen=True)
@@ -135,6 +170,8 @@ class OdometrySpec:
     fuse_gps: bool = False                         # needs sensors.gps
     fuse_compass: bool = False                     # needs sensors.compass
     wheel_radius_error: float = 0.0                # [-] nominal c = true c (1 + error)
+    left_wheel_radius_error: float = 0.0           # [-] nominal c_L = true c (1 + e + e_L)
+    right_wheel_radius_error: float = 0.0          # [-] nominal c_R = true c (1 + e + e_R)
     track_error: float = 0.0                       # [-] nominal b = true b (1 + error)
     external: Optional[ExternalSpec] = None        # a user's estimator instead
 
@@ -298,9 +335,12 @@ class Scenario:
              'odometry.fuse_gps needs sensors.gps.enabled'),
             (not self.odometry.fuse_compass or self.sensors.compass.enabled,
              'odometry.fuse_compass needs sensors.compass.enabled'),
-            (min(self.odometry.wheel_radius_error, self.odometry.track_error) > -0.5
-             and max(self.odometry.wheel_radius_error, self.odometry.track_error) < 0.5,
-             'odometry.wheel_radius_error and track_error must be in (-0.5, 0.5)'),
+            (all(-0.5 < value < 0.5 for value in (
+                self.odometry.wheel_radius_error, self.odometry.track_error,
+                self.odometry.wheel_radius_error + self.odometry.left_wheel_radius_error,
+                self.odometry.wheel_radius_error + self.odometry.right_wheel_radius_error)),
+             'odometry.wheel_radius_error, track_error and wheel_radius_error + '
+             '(left|right)_wheel_radius_error must be in (-0.5, 0.5)'),
             (self.odometry.integration_method in ODOMETRY_METHODS,
              f'odometry.integration_method must be one of {ODOMETRY_METHODS}'),
             *((spec is None or (0.1 <= spec.answer_timeout <= MAX_ANSWER_TIMEOUT

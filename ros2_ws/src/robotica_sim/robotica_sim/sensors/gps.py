@@ -47,6 +47,7 @@ centimetre-level fix reads as STATUS_GBAS_FIX.
 """
 
 from collections.abc import Mapping
+import dataclasses
 from dataclasses import dataclass, fields
 import math
 import numbers
@@ -57,13 +58,15 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from robotica_kin.finite import finite_real
 from robotica_kin.geodetic import GeodeticOrigin, ORIGIN_PARAMETERS
-from robotica_kin.parameter_specs import parameter_values, ParameterSpec, seed_spec
+from robotica_kin.parameter_specs import (parameter_values, ParameterError, ParameterSpec,
+                                          seed_spec)
 from robotica_kin.types import Vector
 from robotica_kin.urdf import SENSOR_FRAME_PARAMETERS
 
 __all__ = [
-    'GPS_PARAMETERS', 'GPS_PRESETS', 'GPS_STATUSES', 'GpsFix', 'GpsModel', 'GpsParams',
-    'NAVSAT_STATUS', 'gps_configuration', 'gps_preset', 'stddev_from_2drms', 'stddev_from_cep',
+    'GPS_PARAMETERS', 'GPS_PRESETS', 'GPS_STATUSES', 'GPS_TERMS', 'GpsFix', 'GpsModel',
+    'GpsParams', 'NAVSAT_STATUS', 'gps_configuration', 'gps_params', 'gps_preset',
+    'gps_term_specs', 'stddev_from_2drms', 'stddev_from_cep',
 ]
 
 GPS_STATUSES = ('fix', 'dgps', 'rtk')
@@ -334,8 +337,26 @@ class GpsModel:
 
     @property
     def params(self) -> GpsParams:
-        """Return the receiver's parameters (replace the model to change them)."""
+        """Return the receiver's parameters."""
         return self._params
+
+    @params.setter
+    def params(self, params: GpsParams) -> None:
+        """
+        Change the receiver's parameters from the next call on (a parameter set at run time).
+
+        The error state and the signal go on; the Gauss–Markov error relaxes to its new σ_GM
+        with its new τ. A new ``update_rate`` restarts the fix schedule at the next call (a fix
+        is then due at once). Raises ValueError unless ``params`` is a GpsParams.
+        """
+        if not isinstance(params, GpsParams):
+            raise ValueError(f'params must be a GpsParams, got {params!r}')
+        if params.update_rate != self._params.update_rate:
+            self._t0, self._next_slot, self._last_slot = None, 0, -1
+        self._params = params
+        self._covariance = params.covariance
+        self._covariance.setflags(write=False)
+        self._sigma_gm = params.correlated_stddev
 
     def reset(self) -> None:
         """Forget the schedule, the error state and any outage; the generator continues."""
@@ -417,27 +438,107 @@ class GpsModel:
         return error
 
 
+GPS_TERMS: dict[str, ParameterSpec] = {
+    'horizontal_stddev': ParameterSpec(
+        GPS_PRESETS['dgps'].horizontal_stddev, 'Total error std. dev. per horizontal axis '
+        '(east, north) sigma_h [m], book §7.7.5 accuracy as 1 sigma (2DRMS = 2 sqrt(2) sigma, '
+        'CEP = 1.1774 sigma)', 1e-6, 1e3),
+    'vertical_stddev': ParameterSpec(
+        GPS_PRESETS['dgps'].vertical_stddev, 'Total error std. dev. up sigma_v [m]; '
+        'assumption (ext.): twice sigma_h but for the SA-era 156 m 2 sigma', 1e-6, 1e3),
+    'correlation_time': ParameterSpec(
+        GPS_PRESETS['dgps'].correlation_time, 'Correlation time tau [s] of the Gauss-Markov '
+        'part of the error; assumption (ext.)', 1e-3, 1e6),
+    'white_stddev': ParameterSpec(
+        GPS_PRESETS['dgps'].white_stddev, 'White part sigma_w [m] per axis, included in '
+        'sigma_h and sigma_v (<= both); assumption (ext.)', 0.0, 1e3),
+    'update_rate': ParameterSpec(
+        GPS_PRESETS['dgps'].update_rate, 'Fixes per second [Hz]; assumption (ext.)',
+        1e-3, 1e3),
+    'latency': ParameterSpec(
+        GPS_PRESETS['dgps'].latency, 'From the position time to the fix output [s]; '
+        'assumption (ext.)', 0.0, 60.0),
+    'dropout.probability': ParameterSpec(
+        GPS_PRESETS['dgps'].dropout_probability, 'Probability p [-] of losing the signal at '
+        'each fix; assumption (ext.)', 0.0, 0.999),
+    'dropout.mean_duration': ParameterSpec(
+        GPS_PRESETS['dgps'].dropout_mean_duration, 'Mean outage D [s], >= one fix period when '
+        'p > 0; assumption (ext.)', 1e-3, 1e6),
+    'status': ParameterSpec(GPS_PRESETS['dgps'].status, 'Solution type of the fixes '
+                            '(NavSatStatus: fix, dgps -> SBAS, rtk -> GBAS)',
+                            choices=GPS_STATUSES),
+}
+"""The fields of :class:`GpsParams` as node parameters, at the default preset's values (each
+preset's are :func:`gps_term_specs`); ``dropout.*`` are ``dropout_*``."""
+
+_TERM_FIELDS = {name: name.replace('.', '_') for name in GPS_TERMS}   # parameter -> field
+
 GPS_PARAMETERS: dict[str, ParameterSpec] = {
-    'preset': ParameterSpec('dgps', 'Receiver (book §7.7.5)', choices=tuple(GPS_PRESETS)),
+    'preset': ParameterSpec('dgps', 'Receiver (book §7.7.5): the starting values of the '
+                            'error terms (a term given explicitly overrides it)',
+                            choices=tuple(GPS_PRESETS)),
     **ORIGIN_PARAMETERS,
     'antenna_height': SENSOR_FRAME_PARAMETERS['antenna_height'],   # gps_link's, in the URDF
     'seed': seed_spec('Seed of the error draws'),
+    **GPS_TERMS,
 }
 """The GPS emulator node's parameters by name: :func:`gps_configuration`."""
+
+
+def gps_term_specs(preset: str) -> dict[str, ParameterSpec]:
+    """
+    Return :data:`GPS_TERMS` with the values of the receiver ``preset`` as their defaults.
+
+    The node declares the terms with these defaults once it has read ``preset``, so that a
+    term given explicitly overrides the preset's. Raises ParameterError for an unknown preset.
+
+    >>> gps_term_specs('rtk')['update_rate'].default
+    10.0
+    """
+    GPS_PARAMETERS['preset'].check('preset', preset)
+    params = GPS_PRESETS[preset]
+    return {name: dataclasses.replace(spec, default=getattr(params, _TERM_FIELDS[name]))
+            for name, spec in GPS_TERMS.items()}
+
+
+def gps_params(parameters: Mapping[str, Any]) -> GpsParams:
+    """
+    Return the receiver of the emulator node's ``parameters`` (names of GPS_PARAMETERS).
+
+    The receiver ``preset`` gives every term; a term in ``parameters`` replaces its value.
+    Raises :class:`~robotica_kin.parameter_specs.ParameterError` naming the parameter for a
+    value out of its range or choices, or refused by :class:`GpsParams`.
+
+    >>> gps_params({'preset': 'rtk', 'dropout.probability': 0.0}).dropout_probability
+    0.0
+    >>> gps_params({}) == gps_preset('dgps')
+    True
+    """
+    preset = parameters.get('preset', GPS_PARAMETERS['preset'].default)
+    values = parameter_values({**GPS_PARAMETERS, **gps_term_specs(preset)}, parameters)
+    try:
+        return dataclasses.replace(GPS_PRESETS[preset], **{
+            field_name: values[name] for name, field_name in _TERM_FIELDS.items()})
+    except ValueError as err:
+        name, _, reason = str(err).partition(' ')
+        parameter = {field_name: name for name, field_name in _TERM_FIELDS.items()}.get(name)
+        raise (ParameterError(parameter, reason) if parameter and reason else err) from None
 
 
 def gps_configuration(parameters: Mapping[str, Any]) -> tuple[GpsParams, GeodeticOrigin]:
     """
     Return the receiver and the world origin of the emulator node's ``parameters``.
 
-    ``parameters`` holds names of :data:`GPS_PARAMETERS` (missing ones take their defaults,
-    others are ignored). Raises :class:`~robotica_kin.parameter_specs.ParameterError` for a
-    value out of its range or choices.
+    ``parameters`` holds names of :data:`GPS_PARAMETERS` (missing ones take their defaults:
+    the terms the preset's, others are ignored). Raises
+    :class:`~robotica_kin.parameter_specs.ParameterError` for a value out of its range or
+    choices.
 
     >>> params, origin = gps_configuration({'preset': 'rtk', 'origin.latitude': 40.0})
     >>> params.status, origin.latitude_deg
     ('rtk', 40.0)
     """
-    values = parameter_values(GPS_PARAMETERS, parameters)
-    return gps_preset(values['preset']), GeodeticOrigin(
+    values = parameter_values(GPS_PARAMETERS, {
+        k: v for k, v in parameters.items() if k not in GPS_TERMS})
+    return gps_params(parameters), GeodeticOrigin(
         values['origin.latitude'], values['origin.longitude'], values['origin.altitude'])

@@ -27,16 +27,19 @@ floor B read off an Allan plot; a Gauss-Markov bias shows on the Allan plot as a
 is about 0.6 σ at τ of about 2 T. One model is one axis; a 3-axis IMU uses three.
 """
 
+import dataclasses
 from dataclasses import dataclass
 import math
 from typing import Any, Mapping
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from robotica_kin.parameter_specs import parameter_values, ParameterSpec, seed_spec
+from robotica_kin.parameter_specs import (named_error, parameter_values, ParameterSpec,
+                                          seed_spec)
 from scipy.signal import lfilter
 
-__all__ = ['GYRO_PARAMETERS', 'GYRO_PRESETS', 'GyroModel', 'GyroParams', 'gyro_params']
+__all__ = ['GYRO_PARAMETERS', 'GYRO_PRESETS', 'GYRO_TERMS', 'GyroModel', 'GyroParams',
+           'gyro_params', 'gyro_term_specs']
 
 _DEG = math.pi / 180.0   # [rad] per degree
 _HOUR = 3600.0           # [s] per hour
@@ -172,6 +175,19 @@ class GyroModel:
         """Return the error terms."""
         return self._params
 
+    @params.setter
+    def params(self, params: GyroParams) -> None:
+        """
+        Change the error terms from the next sample on (a parameter set at run time).
+
+        The bias states go on from their values (the Gauss-Markov bias then relaxes to its new
+        σ_b with its new T); the turn-on bias is drawn again only by :meth:`reset`.
+        Raises ValueError unless ``params`` is a GyroParams.
+        """
+        if not isinstance(params, GyroParams):
+            raise ValueError(f'params must be GyroParams, got {type(params).__name__}')
+        self._params = params
+
     @property
     def bias(self) -> float:
         """Return the current total bias b_0 + b_gm + b_rw [rad/s] (the ground truth)."""
@@ -259,21 +275,86 @@ class GyroModel:
         return self._output(ideal)
 
 
+GYRO_TERMS: dict[str, ParameterSpec] = {
+    'noise_density': ParameterSpec(
+        GYRO_PRESETS['mems_consumer'].noise_density,
+        'White rate noise density N [rad/s/sqrt(Hz)] (angle random walk), §7.7.3', 0.0, 1.0),
+    'bias_instability': ParameterSpec(
+        GYRO_PRESETS['mems_consumer'].bias_instability,
+        'Gauss-Markov bias stationary std. dev. sigma_b [rad/s], §7.7.3 drift; assumption '
+        '(ext.)', 0.0, 1.0),
+    'bias_correlation_time': ParameterSpec(
+        GYRO_PRESETS['mems_consumer'].bias_correlation_time,
+        'Correlation time T [s] of the Gauss-Markov bias; assumption (ext.)', 1e-3, 1e7),
+    'random_walk': ParameterSpec(
+        GYRO_PRESETS['mems_consumer'].random_walk,
+        'Rate random walk K [rad/s^1.5]; assumption (ext.)', 0.0, 1.0),
+    'initial_bias': ParameterSpec(
+        GYRO_PRESETS['mems_consumer'].initial_bias,
+        'Mean turn-on bias b_0 [rad/s]; assumption (ext.)', -1.0, 1.0),
+    'initial_bias_stddev': ParameterSpec(
+        GYRO_PRESETS['mems_consumer'].initial_bias_stddev,
+        'Spread of the turn-on bias, run to run [rad/s]; assumption (ext.)', 0.0, 1.0),
+    'scale_factor_error': ParameterSpec(
+        GYRO_PRESETS['mems_consumer'].scale_factor_error,
+        'Scale-factor error s [-]: y = (1 + s) omega + ...; datasheet (MPU-6050 +-3 %) or '
+        'assumption (ext.)', -0.5, 0.5),
+    'saturation': ParameterSpec(
+        GYRO_PRESETS['mems_consumer'].saturation,
+        'Output clipped to +-saturation [rad/s]; book §7.7.3: MEMS range up to 100 deg/s',
+        1e-3, 1e4),
+    'resolution': ParameterSpec(
+        GYRO_PRESETS['mems_consumer'].resolution,
+        'Output quantum (LSB) [rad/s], 0: none; assumption (ext.)', 0.0, 1.0),
+}
+"""The error terms of :class:`GyroParams` as node parameters, at the default preset's values
+(each preset's are :func:`gyro_term_specs`)."""
+
 GYRO_PARAMETERS: dict[str, ParameterSpec] = {
-    'preset': ParameterSpec('mems_consumer', 'Gyro grade', choices=tuple(GYRO_PRESETS)),
+    'preset': ParameterSpec('mems_consumer', 'Gyro grade: the starting values of the error '
+                            'terms (a term given explicitly overrides it)',
+                            choices=tuple(GYRO_PRESETS)),
     'seed': seed_spec('Seed of the noise and bias draws'),
+    **GYRO_TERMS,
 }
 """The gyro emulator node's parameters by name: :func:`gyro_params`."""
 
 
-def gyro_params(parameters: Mapping[str, Any]) -> GyroParams:
+def gyro_term_specs(preset: str) -> dict[str, ParameterSpec]:
     """
-    Return the gyro grade of the emulator node's ``parameters`` (names of GYRO_PARAMETERS).
+    Return :data:`GYRO_TERMS` with the values of the grade ``preset`` as their defaults.
 
-    Raises :class:`~robotica_kin.parameter_specs.ParameterError` for a value out of its range
-    or choices.
+    The node declares the terms with these defaults once it has read ``preset``, so that a
+    term given explicitly (``-p``, ``--params-file``, a scenario) overrides the preset's.
+    Raises ParameterError for an unknown preset.
 
-    >>> gyro_params({'preset': 'fog'}) is GYRO_PRESETS['fog']
+    >>> gyro_term_specs('fog')['saturation'].default == GYRO_PRESETS['fog'].saturation
     True
     """
-    return GYRO_PRESETS[parameter_values(GYRO_PARAMETERS, parameters)['preset']]
+    GYRO_PARAMETERS['preset'].check('preset', preset)
+    params = GYRO_PRESETS[preset]
+    return {name: dataclasses.replace(spec, default=getattr(params, name))
+            for name, spec in GYRO_TERMS.items()}
+
+
+def gyro_params(parameters: Mapping[str, Any]) -> GyroParams:
+    """
+    Return the gyro of the emulator node's ``parameters`` (names of GYRO_PARAMETERS).
+
+    The grade ``preset`` gives every error term; a term in ``parameters`` replaces its value.
+    Raises :class:`~robotica_kin.parameter_specs.ParameterError` naming the parameter for a
+    value out of its range or choices, or refused by :class:`GyroParams`.
+
+    >>> gyro_params({'preset': 'fog'}) == GYRO_PRESETS['fog']
+    True
+    >>> gyro_params({'preset': 'fog', 'noise_density': 1e-3}).noise_density
+    0.001
+    """
+    preset = parameters.get('preset', GYRO_PARAMETERS['preset'].default)
+    specs = {**GYRO_PARAMETERS, **gyro_term_specs(preset)}
+    values = parameter_values(specs, parameters)
+    try:
+        return dataclasses.replace(GYRO_PRESETS[preset],
+                                   **{name: values[name] for name in GYRO_TERMS})
+    except ValueError as err:
+        raise named_error(err, GYRO_TERMS) from None

@@ -81,3 +81,11 @@ def test_origin_beyond_its_range_is_refused(start_node, read_output):
     assert proc.wait(timeout=30) == 2
     text = read_output(proc)
     assert 'origin.altitude' in text and 'Traceback' not in text
+
+
+def test_terms_checked_together_at_start_up(start_node, read_output):
+    # Each within its range, but the white part exceeds the DGPS preset's total 0.35 m.
+    proc = start_node('robotica_sim', 'gps_emulator', '-p', 'preset:=dgps',
+                      '-p', 'white_stddev:=1.0')
+    assert proc.wait(timeout=30) == 2
+    assert 'white_stddev must be in [0, min(horizontal_stddev' in read_output(proc)

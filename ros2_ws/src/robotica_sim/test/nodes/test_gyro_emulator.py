@@ -10,6 +10,8 @@ import math
 
 from nav_msgs.msg import Odometry
 import pytest
+from rcl_interfaces.msg import Parameter, ParameterType, ParameterValue
+from rcl_interfaces.srv import SetParameters
 from rclpy.qos import QoSProfile, ReliabilityPolicy
 from robotica_kin.ros.qos import STREAM_PUB_QOS
 from sensor_msgs.msg import Imu
@@ -56,3 +58,41 @@ def test_unknown_preset_is_refused(start_node, read_output):
     proc = start_node('robotica_sim', 'gyro_emulator', '-p', 'preset:=ring_laser')
     assert proc.wait(timeout=30) == 2
     assert 'preset must be one of' in read_output(proc)
+
+
+def _set(node, executor, call, name, value):
+    client = node.create_client(SetParameters, '/gyro_emulator/set_parameters')
+    response = call(executor, client, SetParameters.Request(parameters=[Parameter(
+        name=name, value=ParameterValue(type=ParameterType.PARAMETER_DOUBLE,
+                                        double_value=value))]))
+    assert response is not None
+    return response.results[0]
+
+
+def test_terms_override_the_preset_and_are_checked_when_set(start_node, ros_node, spin, call):
+    # An ideal gyro but for its white noise: -p terms override the preset's values, so each
+    # reading's covariance is the given N² / dt (no quantum), and a set changes it.
+    node, executor = ros_node
+    start_node('robotica_sim', 'gyro_emulator', '-p', 'preset:=fog', '-p', 'seed:=1',
+               '-p', 'noise_density:=0.01', '-p', 'resolution:=0.0')
+    readings = []
+    node.create_subscription(Imu, 'imu/data', readings.append, QOS)
+    pub = node.create_publisher(Odometry, 'ground_truth/odom', STREAM_PUB_QOS)
+    assert spin(executor, lambda: pub.get_subscription_count() > 0
+                and node.count_publishers('imu/data') > 0)
+    pub.publish(truth(0.0, 0.0))
+    pub.publish(truth(0.02, 0.0))
+    assert spin(executor, lambda: len(readings) >= 1, timeout=10.0)
+    assert readings[0].angular_velocity_covariance[8] == pytest.approx(0.01 ** 2 / 0.02)
+    refused = _set(node, executor, call, 'bias_correlation_time', 0.0)
+    assert not refused.successful and 'bias_correlation_time' in refused.reason
+    assert _set(node, executor, call, 'noise_density', 0.02).successful
+    pub.publish(truth(0.04, 0.0))
+    assert spin(executor, lambda: len(readings) >= 2, timeout=10.0)
+    assert readings[1].angular_velocity_covariance[8] == pytest.approx(0.02 ** 2 / 0.02)
+
+
+def test_a_term_out_of_range_is_refused_at_start_up(start_node, read_output):
+    proc = start_node('robotica_sim', 'gyro_emulator', '-p', 'scale_factor_error:=0.9')
+    assert proc.wait(timeout=30) == 2
+    assert 'scale_factor_error' in read_output(proc)

@@ -357,6 +357,43 @@ def test_every_sensor_and_a_steered_vehicle(tmp_path):
     assert {'/imu/data', '/compass/heading', '/compass/magnetic_field', '/gps/fix'} <= set(topics)
 
 
+def test_sensor_terms_pass_through_and_the_odometry_models_the_receiver_run(tmp_path):
+    # Terms given override the preset in the emulators' parameters (only those given: the
+    # others stay the preset's, which the node declares as its defaults); the odometry's GPS
+    # error model is that of the receiver as configured, not of the bare preset.
+    path = write(tmp_path, """\
+        path: {shape: circle, center: [0.0, 1.0], radius: 1.0}
+        sensors:
+          gyro: {enabled: true, preset: fog, noise_density: 1.0e-3, saturation: 2.0}
+          gps:
+            enabled: true
+            preset: dgps
+            correlation_time: 120.0
+            white_stddev: 0.2
+            dropout: {probability: 0.0}
+        odometry: {fuse_gps: true}
+        """)
+    nodes = by_name(plan_run(load_scenario(str(path))))
+    gyro = nodes['gyro_emulator'].parameters
+    assert {k: v for k, v in gyro.items() if k != 'seed'} == {
+        'preset': 'fog', 'noise_density': 1e-3, 'saturation': 2.0}
+    gps = nodes['gps_emulator'].parameters
+    assert (gps['preset'], gps['correlation_time'], gps['white_stddev'],
+            gps['dropout.probability']) == ('dgps', 120.0, 0.2, 0.0)
+    assert 'latency' not in gps and 'dropout.mean_duration' not in gps
+    odometry = nodes['odometry'].parameters
+    sigma = 1.0 / (2.0 * math.sqrt(2.0))   # DGPS: 2DRMS 1 m
+    assert odometry['gps_bias.stddev'] == pytest.approx(math.sqrt(sigma ** 2 - 0.2 ** 2))
+    assert (odometry['gps_bias.correlation_time'], odometry['gps_bias.white_stddev']) \
+        == (120.0, 0.2)
+
+
+def test_an_unknown_sensor_term_is_a_scenario_error(tmp_path):
+    path = write(tmp_path, 'sensors:\n  gyro: {enabled: true, bias: 0.1}\n')
+    with pytest.raises(ScenarioError, match=r'sensors.gyro: unknown key\(s\) bias'):
+        load_scenario(str(path))
+
+
 @pytest.mark.parametrize('vehicle_type, wheels', [
     ('differential', ['left_wheel_joint', 'right_wheel_joint']),
     ('mecanum', ['left_odometry_wheel_joint', 'right_odometry_wheel_joint'])])

@@ -21,6 +21,7 @@ from robotica_sim.runs.supervisor import ProcessSupervisor
 from robotica_sim.sensors.compass import compass_params
 from robotica_sim.sensors.encoder import encoder_params
 from robotica_sim.sensors.gps import gps_configuration
+from robotica_sim.sensors.gyro import gyro_params
 from robotica_sim.simulation.arm import arm_simulation
 from robotica_sim.simulation.vehicle import vehicle_simulation
 import yaml
@@ -143,6 +144,17 @@ CASES = [
     ('origin 200 km high', 'demo', {'sensors.gps': {'enabled': True,
                                                     'origin': [37.0, -6.0, 2e5]}},
      'sensors.gps.origin[2] (altitude) must be in [-10000, 100000], got 200000.0'),
+    ('GPS white part beyond the total', 'demo', {'sensors.gps': {'enabled': True,
+                                                                 'preset': 'rtk',
+                                                                 'white_stddev': 0.1}},
+     'sensors.gps.white_stddev must be in [0, min(horizontal_stddev, vertical_stddev)]'),
+    ('GPS outage shorter than a fix', 'demo', {'sensors.gps': {
+        'enabled': True, 'update_rate': 1.0, 'dropout': {'mean_duration': 0.5}}},
+     'sensors.gps.dropout.mean_duration must be >= one fix period'),
+    # gyro_emulator (robotica_sim.sensors.gyro)
+    ('gyro scale factor of 60 %', 'demo', {'sensors.gyro': {'enabled': True,
+                                                            'scale_factor_error': 0.6}},
+     'sensors.gyro.scale_factor_error must be in [-0.5, 0.5], got 0.6'),
 ]
 
 
@@ -201,6 +213,8 @@ def test_run_refuses_in_one_line_before_any_process(tmp_path, capsys, no_process
     (lambda: encoder_params({'gear_ratio': 2e4}), 'gear_ratio'),
     (lambda: compass_params({'tilt_error': 0.6}), 'tilt_error'),
     (lambda: gps_configuration({'origin.altitude': 2e5}), 'origin.altitude'),
+    (lambda: gps_configuration({'latency': -1.0}), 'latency'),
+    (lambda: gyro_params({'bias_correlation_time': 0.0}), 'bias_correlation_time'),
 ])
 def test_the_node_check_names_its_parameter(check, name):
     with pytest.raises(ParameterError) as info:

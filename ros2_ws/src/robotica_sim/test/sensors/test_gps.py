@@ -16,10 +16,14 @@ import math
 
 import numpy as np
 import pytest
+from robotica_kin.parameter_specs import ParameterError
 from robotica_sim.sensors.gps import (
+                                      gps_params,
                                       gps_preset,
                                       GPS_PRESETS,
                                       GPS_STATUSES,
+                                      gps_term_specs,
+                                      GPS_TERMS,
                                       GpsFix,
                                       GpsModel,
                                       GpsParams,
@@ -395,3 +399,46 @@ def test_model_rejects_bad_seed(seed):
 def test_model_rejects_bad_params():
     with pytest.raises(ValueError, match='GpsParams'):
         GpsModel({'update_rate': 1.0}, seed=0)  # type: ignore[arg-type]
+
+
+# -- the emulator's parameters: every term, the preset as starting values ----------------------
+@pytest.mark.parametrize('name', sorted(GPS_PRESETS))
+def test_parameters_without_terms_are_the_preset(name):
+    assert gps_params({'preset': name}) == GPS_PRESETS[name]
+    fields = {f.name for f in dataclasses.fields(GpsParams)}
+    assert {term.replace('.', '_') for term in GPS_TERMS} == fields
+    for term, spec in gps_term_specs(name).items():   # preset values within their ranges
+        spec.check(term, spec.default)
+
+
+def test_a_term_given_overrides_the_preset_and_only_it():
+    params = gps_params({'preset': 'rtk', 'update_rate': 2.0, 'dropout.probability': 0.0})
+    assert params == dataclasses.replace(GPS_PRESETS['rtk'], update_rate=2.0,
+                                         dropout_probability=0.0)
+    model = GpsModel(params, 0)
+    stamps = [fix.stamp for k in range(101)
+              if (fix := model.measure(0.01 * k, [0.0, 0.0, 0.0])) is not None]
+    assert stamps == pytest.approx([0.0, 0.5, 1.0])   # 2 Hz, never dropped
+
+
+@pytest.mark.parametrize('values, name', [
+    ({'horizontal_stddev': 0.0}, 'horizontal_stddev'),
+    ({'white_stddev': 1.0}, 'white_stddev'),                 # > σ_h of dgps: GpsParams refuses
+    ({'dropout.mean_duration': 0.05}, 'dropout.mean_duration'),   # < one period at 5 Hz
+    ({'dropout.probability': 1.0}, 'dropout.probability'),
+    ({'status': 'ppp'}, 'status'),
+])
+def test_a_bad_term_is_refused_by_name(values, name):
+    with pytest.raises(ParameterError) as info:
+        gps_params({'preset': 'dgps', **values})
+    assert info.value.name == name
+
+
+def test_a_new_rate_restarts_the_schedule_and_keeps_the_error():
+    model = GpsModel(dataclasses.replace(gps_preset('dgps'), dropout_probability=0.0), 1)
+    assert model.measure(0.0, [0.0, 0.0, 0.0]) is not None
+    assert model.measure(0.1, [0.0, 0.0, 0.0]) is None      # next due at 0.2 s
+    model.params = dataclasses.replace(model.params, update_rate=1.0, white_stddev=0.0)
+    fix = model.measure(0.1, [0.0, 0.0, 0.0])               # due at once, then 1 Hz
+    assert fix is not None and model.measure(0.5, [0.0, 0.0, 0.0]) is None
+    assert fix.covariance[0, 0] == pytest.approx(gps_preset('dgps').horizontal_stddev ** 2)

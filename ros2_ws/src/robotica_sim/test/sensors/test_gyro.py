@@ -10,12 +10,15 @@ N (1 - φ²)/(1 + φ²) of an AR(1) sequence for the Gauss-Markov bias), means a
 bounds, all at a two-sided probability of about 1e-6 with fixed seeds.
 """
 
+import dataclasses
 import math
 
 import numpy as np
 import pytest
+from robotica_kin.parameter_specs import ParameterError
 from robotica_sim.sensors.allan import allan_deviation
-from robotica_sim.sensors.gyro import GYRO_PRESETS, GyroModel, GyroParams
+from robotica_sim.sensors.gyro import (gyro_params, GYRO_PRESETS, gyro_term_specs, GyroModel,
+                                       GyroParams)
 from scipy.stats import chi2
 
 DT = 0.01      # [s]
@@ -257,3 +260,47 @@ def test_bad_measurements_are_refused():
         gyro.measure_many([[0.0]], DT)
     with pytest.raises(ValueError, match='GyroParams'):
         GyroModel({'noise_density': 0.0}, seed=0)
+
+
+# -- the emulator's parameters: every term, the preset as starting values ----------------------
+@pytest.mark.parametrize('name', sorted(GYRO_PRESETS))
+def test_parameters_without_terms_are_the_preset(name):
+    assert gyro_params({'preset': name}) == GYRO_PRESETS[name]
+    specs = gyro_term_specs(name)
+    assert set(specs) == {f.name for f in dataclasses.fields(GyroParams)}
+    for term, spec in specs.items():   # each preset value lies within its declared range
+        spec.check(term, spec.default)
+        assert spec.default == getattr(GYRO_PRESETS[name], term)
+
+
+def test_a_term_given_overrides_the_preset_and_only_it():
+    params = gyro_params({'preset': 'fog', 'noise_density': 1e-3, 'saturation': 2.0})
+    assert dataclasses.replace(GYRO_PRESETS['fog'], noise_density=1e-3, saturation=2.0) \
+        == params
+    # The overridden density is what the model draws: variance N²/dt within chi-square bounds.
+    gyro = GyroModel(dataclasses.replace(params, initial_bias_stddev=0.0, bias_instability=0.0,
+                                         random_walk=0.0), seed=3)
+    assert_variance(gyro.measure_many(np.zeros(20_000), DT), 1e-3 ** 2 / DT)
+
+
+@pytest.mark.parametrize('values, name', [
+    ({'noise_density': -1e-3}, 'noise_density'),
+    ({'bias_correlation_time': 0.0}, 'bias_correlation_time'),
+    ({'scale_factor_error': 0.7}, 'scale_factor_error'),
+    ({'saturation': 0.0}, 'saturation'),
+    ({'preset': 'ring_laser'}, 'preset'),
+])
+def test_a_bad_term_is_refused_by_name(values, name):
+    with pytest.raises(ParameterError) as info:
+        gyro_params({'preset': 'mems_consumer', **values})
+    assert info.value.name == name
+
+
+def test_terms_may_change_while_the_biases_go_on():
+    gyro = GyroModel(GYRO_PRESETS['mems_consumer'], seed=4)
+    gyro.measure_many(np.zeros(100), DT)
+    bias = gyro.bias
+    gyro.params = dataclasses.replace(gyro.params, scale_factor_error=0.2)
+    assert gyro.bias == bias and gyro.params.scale_factor_error == 0.2
+    with pytest.raises(ValueError, match='GyroParams'):
+        gyro.params = {'scale_factor_error': 0.2}
