@@ -459,3 +459,50 @@ def test_a_travel_faster_than_the_bound_is_refused_until_three_confirm_it():
         events += odom.update()[1]
     assert kinds(events) == ['travel_refused', 'travel_refused', 'ticks_rebased']
     assert odom.pose[0] == pytest.approx(x + 20 * C_M, rel=1e-12)
+
+
+# -- per-wheel radius errors (the systematic errors of a UMBmark test) --------------------------
+
+@pytest.mark.parametrize('e_left, e_right, track_error', [
+    (-0.01, 0.01, 0.0), (0.004, -0.002, 0.05), (0.0, 0.003, -0.02)])
+def test_unequal_nominal_radii_bend_a_straight_run_into_the_predicted_arc(
+        e_left, e_right, track_error):
+    """
+    A straight true run, read with nominal radii c (1 + e_L) and c (1 + e_R), is an arc.
+
+    Both true wheels (radius c) turn by the same angle φ, so the robot goes straight for
+    D = c φ and each encoder counts n = TICKS φ / 2π. The odometry converts the counts with its
+    own radii (C_m = 2π c_i / TICKS): U_L = 2π c (1 + e_L) n / TICKS = D (1 + e_L) and
+    U_R = D (1 + e_R). With the nominal track b_n = b (1 + e_b), slides §13.6 / book (4.110)
+    give the heading change Δθ = (U_R - U_L) / b_n = D (e_R - e_L) / b_n and (4.109) the
+    distance s = (U_L + U_R) / 2 = D (1 + (e_L + e_R) / 2). Every reading has the same ratio,
+    so the estimate moves on one circle of radius R = s / Δθ = b_n (1 + (e_L + e_R)/2) /
+    (e_R - e_L), Δθ = s (e_R - e_L) / (b_n (1 + (e_L + e_R) / 2)) as a function of the
+    estimated distance; from (0, 0, 0) its end is x = R sin Δθ, y = R (1 - cos Δθ),
+    θ = Δθ, and every intermediate estimate lies on the circle of centre (0, R) (the exact
+    arc (4.93) composes exactly).
+    """
+    c_left, c_right = RADIUS * (1 + e_left), RADIUS * (1 + e_right)
+    b_n = TRACK * (1.0 + track_error)
+    odom = OdometryFusion(OdometryFusionParams(
+        wheel_radius=RADIUS, wheel_separation=b_n, left_wheel_radius=c_left,
+        right_wheel_radius=c_right), (0.0, 0.0, 0.0), ZERO)
+    step, readings = 250, 80          # counts per reading on both wheels: 20 000 in all
+    estimates = feed(odom, [(k * step, k * step, 0.1 * k) for k in range(readings + 1)])
+    D = 2.0 * math.pi * RADIUS * step * readings / TICKS          # true straight run [m]
+    turn = D * (e_right - e_left) / b_n
+    s = D * (1.0 + 0.5 * (e_left + e_right))
+    R = s / turn
+    assert estimates[-1].pose == pytest.approx(
+        [R * math.sin(turn), R * (1.0 - math.cos(turn)), turn], abs=1e-9)
+    for estimate in estimates:
+        x, y, _ = estimate.pose
+        assert math.hypot(x, y - R) == pytest.approx(abs(R), rel=1e-9)
+
+
+def test_zero_per_wheel_radii_mean_the_common_radius():
+    params = OdometryFusionParams(wheel_radius=RADIUS, left_wheel_radius=0.0,
+                                  right_wheel_radius=0.12)
+    assert params.wheel_radii == (RADIUS, 0.12)
+    with pytest.raises(ValueError, match='left_wheel_radius'):
+        OdometryFusionParams(left_wheel_radius=-0.1)

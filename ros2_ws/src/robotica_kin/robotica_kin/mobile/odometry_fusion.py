@@ -3,7 +3,8 @@ Odometry fusion: dead reckoning from encoder ticks (and gyro) in an EKF, with GP
 
 The estimator of the odometry node, without ROS: every encoder reading moves the estimate by the
 wheels' travel since the previous one, by the slides' equations (catalog §13.6): ΔU = C_m Δticks
-with C_m = 2π c / ticks_per_revolution (:func:`metres_per_tick`), ΔU_c = (ΔU_l + ΔU_r)/2,
+with C_m = 2π c / ticks_per_revolution (:func:`metres_per_tick`; each wheel with its own
+nominal radius c_L, c_R when they differ), ΔU_c = (ΔU_l + ΔU_r)/2,
 Δθ = (ΔU_r − ΔU_l)/b, applied by :func:`robotica_kin.mobile.odometry.odometry_increment` with
 one of its rules (``euler``, ``midpoint`` or the exact arc (4.93), book §4.7.5); ΔU_c and Δθ
 are the wheel speeds of book (4.109)-(4.110) times the interval. With the heading from a gyro
@@ -64,6 +65,10 @@ ODOMETRY_PARAMETERS: dict[str, ParameterSpec] = {
     'wheel_separation': dataclasses.replace(
         GEOMETRY_PARAMETERS['track'],
         description='Nominal track b between the odometry wheels [m], book (4.110)'),
+    **{f'{side}_wheel_radius': ParameterSpec(
+        0.0, f'Nominal {side} wheel radius c_{side[0].upper()} [m], book (4.109) per wheel '
+        '(the systematic error of a UMBmark test); 0: wheel_radius', 0.0, 10.0)
+       for side in ('left', 'right')},
     **POSE_PARAMETERS, **ORIGIN_PARAMETERS,
 }
 """The odometry node's geometry, initial pose (odom frame) and geodetic origin: the ranges of
@@ -136,6 +141,8 @@ class OdometryFusionParams:
 
     wheel_radius: float = 0.1                 # c [m], book (4.109)
     wheel_separation: float = 0.4             # b [m] between the odometry wheels, book (4.110)
+    left_wheel_radius: float = 0.0            # c_L [m] of the left wheel; 0: wheel_radius
+    right_wheel_radius: float = 0.0           # c_R [m] of the right wheel; 0: wheel_radius
     integration_method: str = 'exact_arc'     # ODOMETRY_METHODS: slides §13.6, book (4.93)
     heading_source: str = 'encoders'          # HEADING_SOURCES
     odometry_noise: OdometryNoise = field(default_factory=OdometryNoise)   # [m²/m, rad²/...]
@@ -153,7 +160,8 @@ class OdometryFusionParams:
             if not (math.isfinite(value) and value > 0.0):
                 raise ValueError(f'{name} must be finite and > 0 {unit}, got {value!r}')
         for name, unit in (('gyro_bias_stddev', 'rad/s'), ('gps_bias_stddev', 'm'),
-                           ('gps_white_stddev', 'm')):
+                           ('gps_white_stddev', 'm'), ('left_wheel_radius', 'm'),
+                           ('right_wheel_radius', 'm')):
             value = getattr(self, name)
             if not (math.isfinite(value) and value >= 0.0):
                 raise ValueError(f'{name} must be finite and >= 0 {unit}, got {value!r}')
@@ -174,6 +182,17 @@ class OdometryFusionParams:
                 or self.max_rejections < 1):
             raise ValueError(f'max_rejections must be an integer >= 1, got '
                              f'{self.max_rejections!r}')
+
+    @property
+    def wheel_radii(self) -> tuple[float, float]:
+        """
+        Return the nominal (c_L, c_R) [m]: each wheel's radius, or ``wheel_radius`` where 0.
+
+        >>> OdometryFusionParams(wheel_radius=0.1, right_wheel_radius=0.101).wheel_radii
+        (0.1, 0.101)
+        """
+        return (self.left_wheel_radius or self.wheel_radius,
+                self.right_wheel_radius or self.wheel_radius)
 
 
 @dataclass(frozen=True)
@@ -249,7 +268,7 @@ class _Reading(NamedTuple):
     left_ticks: int
     right_ticks: int
     t: float                  # [s]
-    metres_per_tick: float    # [m/tick]
+    metres_per_tick: tuple[float, float]    # [m/tick] (left, right)
 
 
 class _Measurement(NamedTuple):
@@ -396,8 +415,10 @@ class OdometryFusion:
         for name, count in (('left_ticks', left_ticks), ('right_ticks', right_ticks)):
             if isinstance(count, bool) or not isinstance(count, numbers.Integral):
                 raise ValueError(f'{name} must be an integer, got {count!r}')
+        left_radius, right_radius = self._params.wheel_radii
         reading = _Reading(left_ticks, right_ticks, finite_real('t', t),
-                           metres_per_tick(self._params.wheel_radius, ticks_per_revolution))
+                           (metres_per_tick(left_radius, ticks_per_revolution),
+                            metres_per_tick(right_radius, ticks_per_revolution)))
         reference = math.nan if self._stamps.latest is None else self._stamps.latest
         try:
             restart = self._stamps.check(reading.t) == 'restart'
@@ -599,8 +620,8 @@ class OdometryFusion:
             events.append(FusionEvent('time_went_back', t=t, t_previous=t0))
             return False
         params = self._params
-        left = reading.metres_per_tick * (reading.left_ticks - self._last.left_ticks)
-        right = reading.metres_per_tick * (reading.right_ticks - self._last.right_ticks)
+        left = reading.metres_per_tick[0] * (reading.left_ticks - self._last.left_ticks)
+        right = reading.metres_per_tick[1] * (reading.right_ticks - self._last.right_ticks)
         if max(abs(left), abs(right)) > MAX_SPEED * (t - t0):
             self._untravelled += 1
             if self._untravelled < JUMP_CONFIRMATIONS:

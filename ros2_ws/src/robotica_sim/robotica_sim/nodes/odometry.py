@@ -3,7 +3,9 @@ Odometry node: dead reckoning from wheel-encoder ticks, fused with gyro, compass
 
 Every ``wheel_encoders`` reading (robotica_msgs/WheelEncoders) moves the estimate by the wheels'
 travel since the previous one, by the slides' equations (catalog §13.6): ΔU = C_m Δticks with
-C_m = 2π c / ticks_per_revolution, ΔU_c = (ΔU_l + ΔU_r)/2, Δθ = (ΔU_r − ΔU_l)/b, applied with
+C_m = 2π c / ticks_per_revolution (each wheel with its nominal radius: ``left_wheel_radius``,
+``right_wheel_radius``, or ``wheel_radius`` where they are 0), ΔU_c = (ΔU_l + ΔU_r)/2,
+Δθ = (ΔU_r − ΔU_l)/b, applied with
 ``integration_method`` (``euler``, ``midpoint`` or the exact arc (4.93), book §4.7.5). With
 ``heading_source`` = ``gyro`` the heading increment is instead the integral of the yaw rate of
 ``imu/data`` (sensor_msgs/Imu) since the previous reading: the encoders then give the distance
@@ -151,7 +153,9 @@ class OdometryNode(GuardedNode):
             low=1, high=100000, read_only=True)
         self._fusion = OdometryFusion(
             OdometryFusionParams(
-                wheel_radius=radius, wheel_separation=track, integration_method=method,
+                wheel_radius=radius, wheel_separation=track,
+                left_wheel_radius=values['left_wheel_radius'],
+                right_wheel_radius=values['right_wheel_radius'], integration_method=method,
                 heading_source=heading_source, odometry_noise=noise,
                 gyro_bias_stddev=gyro_bias_stddev, gps_bias_stddev=bias[0],
                 gps_bias_correlation_time=bias[1], gps_white_stddev=bias[2],

@@ -542,6 +542,22 @@ def _gps_bias(scenario: Scenario) -> dict:
             'gps_bias.white_stddev': params.white_stddev}
 
 
+def _wheel_radii(scenario: Scenario) -> dict:
+    """
+    Return the odometry's nominal per-wheel radii when the scenario gives per-wheel errors.
+
+    c_L = c (1 + e + e_L) and c_R = c (1 + e + e_R): the per-wheel errors add to the common
+    ``wheel_radius_error`` e. Without them the node's ``wheel_radius`` serves both wheels.
+    """
+    odometry, c = scenario.odometry, scenario.robot.wheel_radius
+    errors = {'left': odometry.left_wheel_radius_error,
+              'right': odometry.right_wheel_radius_error}
+    if not any(errors.values()):
+        return {}
+    return {f'{side}_wheel_radius': c * (1.0 + odometry.wheel_radius_error + error)
+            for side, error in errors.items()}
+
+
 POSE_KEYS = {f'initial_pose.{axis}': f'robot.initial_pose[{i}] ({axis})'
              for i, axis in enumerate(('x', 'y', 'theta'))}
 ROBOT_KEYS = {'wheel_radius': 'wheel_radius', 'track': 'wheel_separation',
@@ -557,6 +573,9 @@ SIMULATOR_KEYS = {'vehicle.type': 'robot.type',
 """The vehicle simulator's parameters that come from the scenario: their scenario keys."""
 ODOMETRY_KEYS = {'wheel_radius': 'robot.wheel_radius x (1 + odometry.wheel_radius_error)',
                  'wheel_separation': 'robot.wheel_separation x (1 + odometry.track_error)',
+                 **{f'{side}_wheel_radius': 'robot.wheel_radius x (1 + odometry.'
+                    f'wheel_radius_error + odometry.{side}_wheel_radius_error)'
+                    for side in ('left', 'right')},
                  **POSE_KEYS, **ORIGIN_KEYS}
 """The odometry's parameters that come from the scenario: their scenario keys."""
 
@@ -625,6 +644,7 @@ def _plan_mobile(scenario: Scenario) -> list[NodeSpec]:
     estimator = {
         'wheel_radius': robot.wheel_radius * (1.0 + odometry.wheel_radius_error),
         'wheel_separation': robot.wheel_separation * (1.0 + odometry.track_error),
+        **_wheel_radii(scenario),
         'integration_method': odometry.integration_method,
         'heading_source': odometry.heading_source, 'fuse_gps': odometry.fuse_gps,
         'fuse_compass': odometry.fuse_compass, **_origin(scenario), **_gps_bias(scenario),

@@ -388,6 +388,19 @@ def test_sensor_terms_pass_through_and_the_odometry_models_the_receiver_run(tmp_
         == (120.0, 0.2)
 
 
+def test_per_wheel_radius_errors_add_to_the_common_one(tmp_path):
+    base = ('path: {shape: circle, center: [0.0, 1.0], radius: 1.0}\n'
+            'robot: {wheel_radius: 0.2}\n')
+    plain = by_name(plan_run(load_scenario(str(write(tmp_path, base)))))
+    assert 'left_wheel_radius' not in plain['odometry'].parameters   # 0: wheel_radius
+    path = write(tmp_path, base + 'odometry: {wheel_radius_error: 0.01, '
+                 'left_wheel_radius_error: -0.004, right_wheel_radius_error: 0.002}\n')
+    odometry = by_name(plan_run(load_scenario(str(path))))['odometry'].parameters
+    assert odometry['wheel_radius'] == pytest.approx(0.2 * 1.01)
+    assert odometry['left_wheel_radius'] == pytest.approx(0.2 * (1.0 + 0.01 - 0.004))
+    assert odometry['right_wheel_radius'] == pytest.approx(0.2 * (1.0 + 0.01 + 0.002))
+
+
 def test_an_unknown_sensor_term_is_a_scenario_error(tmp_path):
     path = write(tmp_path, 'sensors:\n  gyro: {enabled: true, bias: 0.1}\n')
     with pytest.raises(ScenarioError, match=r'sensors.gyro: unknown key\(s\) bias'):
