@@ -15,11 +15,16 @@ with the command held (zero-order hold), classic RK4 integrates
 
 A command older than ``cmd_timeout`` sets the targets to a stop (zero speeds; a steered vehicle
 keeps its steering angle): the stale-command safety of ros2_controllers' ``cmd_vel_timeout``.
+
+With a world (:class:`robotica_kin.world.shapes.World`), each step's motion is checked against
+it (:mod:`robotica_sim.simulation.contact`): the vehicle's footprint stops where it first
+touches an obstacle, its speeds zeroed and its odometry wheels' angles at the same fraction of
+the step, and the contact is counted. Without one (the default) nothing of this runs.
 """
 
 from dataclasses import dataclass
 import math
-from typing import Any, Mapping
+from typing import Any, Mapping, Optional
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -29,6 +34,10 @@ from robotica_kin.mobile.vehicles import (as_command, GEOMETRY_PARAMETERS, POSE_
                                           vehicle_kinematics, VEHICLE_TYPES, VehicleGeometry,
                                           VehicleKinematics)
 from robotica_kin.parameter_specs import parameter_values, ParameterSpec
+from robotica_kin.world.queries import Footprint, footprint_distance
+from robotica_kin.world.shapes import World
+from robotica_sim.simulation.contact import (CONTACT_DISTANCE, contact_point,
+                                             footprint_from_parameters, step_fraction)
 
 __all__ = ['SIMULATOR_PARAMETERS', 'VehicleSimulation', 'VehicleSimulationParams',
            'vehicle_simulation']
@@ -74,6 +83,12 @@ SIMULATOR_PARAMETERS: dict[str, ParameterSpec] = {
                                             0.0, 60.0),
     'longitudinal_slip': ParameterSpec(0.0, 'Wheel slip s: the ground moves (1 - s) of what the '
                                        'wheels roll', 0.0, 0.9),
+    'footprint.radius': ParameterSpec(0.0, 'Footprint for contact with the world: a circle of '
+                                      'this radius [m] about base_link; 0: the polygon', 0.0,
+                                      100.0),
+    'footprint.polygon': ParameterSpec((0.0,), 'Footprint polygon [x1, y1, x2, y2, ...] [m] in '
+                                       "base_link; [0.0]: the vehicle's outline (as drawn)",
+                                       -100.0, 100.0),
 }
 """The vehicle simulator node's parameters of the plant, by name: :func:`vehicle_simulation`."""
 
@@ -98,11 +113,30 @@ class VehicleSimulation:
     """
 
     def __init__(self, kinematics: VehicleKinematics, params: VehicleSimulationParams,
-                 initial_pose: ArrayLike = (0.0, 0.0, 0.0)) -> None:
+                 initial_pose: ArrayLike = (0.0, 0.0, 0.0), world: Optional[World] = None,
+                 footprint: Optional[Footprint] = None) -> None:
         pose = np.asarray(initial_pose, dtype=np.float64)
         if pose.shape != (3,) or not np.isfinite(pose).all():
             raise ValueError(f'initial_pose must be 3 finite numbers (x, y, theta), got '
                              f'{initial_pose!r}')
+        self.world = world
+        self.footprint = footprint
+        self._obstacles: Optional[tuple[World, Footprint]] = None
+        if world is not None:
+            if footprint is None:
+                raise ValueError('a world needs the footprint of the vehicle (a radius or '
+                                 'polygon)')
+            self._obstacles = (world, footprint)
+        self.in_contact = False          # the footprint touches an obstacle now
+        self.contacts = 0                # contacts begun (touching after being free)
+        self.time_in_contact = 0.0       # [s] steps begun in contact, times the step period
+        self.contact_point = np.full(2, np.nan)    # [m] map frame, on the obstacle
+        self.contact_normal = np.full(2, np.nan)   # unit, map frame, facing the vehicle
+        if self._obstacles is not None:
+            if footprint_distance(*self._obstacles, pose) <= 0.0:
+                raise ValueError(f'initial_pose {pose.tolist()} (x, y, theta) puts the '
+                                 "vehicle's footprint inside an obstacle of the world")
+            self._update_contact(pose, *self._obstacles)
         self.kinematics = kinematics
         self.params = params
         m = len(kinematics.actuator_names)
@@ -213,31 +247,71 @@ class VehicleSimulation:
                                 scale * omega], rates, self.kinematics.wheel_rates(actuators)])
 
     def step(self) -> None:
-        """Advance one step with the current command (a stop when it is stale)."""
+        """
+        Advance one step with the current command (a stop when it is stale).
+
+        With a world, a step that meets an obstacle ends where the footprint first touches it,
+        with zero speeds (a steered vehicle keeps its steering angle).
+        """
         targets = self._stop_targets() if self.command_is_stale() else self._targets
         instant = ~self._lagged
         self._state[3:3 + self._m][instant] = targets[instant]
+        start = self._state.copy()
         h = self.params.step_period / self.params.rk4_substeps
         t = self.t
         for _ in range(self.params.rk4_substeps):
             self._state = rk4_step(self._deriv, t, self._state, h, targets)
             t += h
         self._step += 1
+        if self._obstacles is not None:
+            self._constrain(start, *self._obstacles)
+
+    # -- contact with the world -----------------------------------------------------------
+    def _constrain(self, start: NDArray[np.float64], world: World,
+                   footprint: Footprint) -> None:
+        """Stop the step at its first contact with the world; count the contact."""
+        if self.in_contact:
+            self.time_in_contact += self.params.step_period
+        fraction = step_fraction(world, footprint, start[:3], self._state[:3])
+        if fraction is not None:
+            delta = self._state - start
+            delta[2] = math.atan2(math.sin(delta[2]), math.cos(delta[2]))
+            state = start + fraction * delta
+            state[3:3 + self._m] = self._stop_targets()
+            self._state = state
+        self._update_contact(self._state[:3], world, footprint)
+
+    def _update_contact(self, pose: NDArray[np.float64], world: World,
+                        footprint: Footprint) -> None:
+        touching = footprint_distance(world, footprint, pose) <= CONTACT_DISTANCE
+        if touching and not self.in_contact:
+            self.contacts += 1
+        self.in_contact = touching
+        if touching:
+            self.contact_point, self.contact_normal = contact_point(world, footprint, pose)
+        else:
+            self.contact_point = self.contact_normal = np.full(2, np.nan)
 
 
-def vehicle_simulation(parameters: Mapping[str, Any], step_period: float) -> VehicleSimulation:
+def vehicle_simulation(parameters: Mapping[str, Any], step_period: float,
+                       world: Optional[World] = None) -> VehicleSimulation:
     """
     Return the simulation the vehicle simulator node runs for its ``parameters`` (by name).
 
     ``parameters`` maps names of :data:`SIMULATOR_PARAMETERS` (others are ignored; missing
     ones take their defaults) to values; ``step_period`` [s] is the simulated time per step.
+    ``world``: the obstacles the vehicle stops at (None: none), its footprint the
+    ``footprint.*`` parameters' (:func:`~robotica_sim.simulation.contact.
+    footprint_from_parameters`).
 
     Raises
     ------
     robotica_kin.parameter_specs.ParameterError
         For a value out of its range or choices (``name`` is the parameter's).
     ValueError
-        For values the models refuse together.
+        For values the models refuse together, a bad footprint (naming ``footprint.radius`` or
+        ``footprint.polygon``) or an initial pose whose footprint is inside an obstacle of
+        the world (naming ``initial_pose``).
 
     Examples
     --------
@@ -253,4 +327,10 @@ def vehicle_simulation(parameters: Mapping[str, Any], step_period: float) -> Veh
             'rk4_substeps', 'cmd_timeout', 'traction_time_constant', 'steering_time_constant',
             'longitudinal_slip')})
     pose = [values[f'initial_pose.{axis}'] for axis in ('x', 'y', 'theta')]
-    return VehicleSimulation(vehicle_kinematics(values['vehicle.type'], geometry), params, pose)
+    kinematics = vehicle_kinematics(values['vehicle.type'], geometry)
+    if world is None:
+        return VehicleSimulation(kinematics, params, pose)
+    footprint = footprint_from_parameters(values['vehicle.type'], geometry,
+                                          values['footprint.radius'],
+                                          values['footprint.polygon'])
+    return VehicleSimulation(kinematics, params, pose, world, footprint)
