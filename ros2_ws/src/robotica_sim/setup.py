@@ -36,6 +36,7 @@ setup(
             'recorder = robotica_sim.nodes.recorder:main',
             'view_relay = robotica_sim.nodes.view_relay:main',
             'markers = robotica_sim.nodes.markers:main',
+            'world_publisher = robotica_sim.nodes.world_publisher:main',
             'robotica = robotica_sim.cli.main:main',
         ],
     },

@@ -1,0 +1,55 @@
+"""
+World publisher node: the run's world on ``/map``, as a map server does.
+
+Loads ``world_file`` (a map_server map, or a YAML file with a ``world:`` section such as the
+run's scenario: :func:`robotica_kin.world.world_file.load_world_file`), draws it as an occupancy
+grid of ``resolution`` [m/cell] (:func:`robotica_kin.world.rasterise.world_grid`; a map file's
+grid as it is) and publishes it once on ``/map`` (nav_msgs/OccupancyGrid, frame ``frame_id``,
+reliable and transient local as nav2_map_server's, so that a viewer, a planner or the recorder
+that comes later still gets it). A world file that is missing or malformed ends the node at
+start-up with one line naming the file and the field (exit 2).
+"""
+from pathlib import Path
+
+from nav_msgs.msg import OccupancyGrid as OccupancyGridMsg
+from rclpy.experimental import EventsExecutor
+from robotica_kin.ros.convert import yaw_to_quaternion
+from robotica_kin.ros.entry_point import run_node
+from robotica_kin.ros.guarded import GuardedNode
+from robotica_kin.ros.parameters import declare
+from robotica_kin.ros.qos import LATCHED_QOS
+from robotica_kin.world.rasterise import world_grid
+from robotica_kin.world.world_file import load_world_file
+
+
+class WorldPublisherNode(GuardedNode):
+    """Publish the world of ``world_file`` on /map, once, latched."""
+
+    def __init__(self) -> None:
+        super().__init__('world_publisher')
+        path = declare(self, 'world_file', '', 'The world: a map_server map or a YAML file with '
+                       'a world: section (a scenario)', read_only=True)
+        resolution = declare(self, 'resolution', 0.05, 'Cell size of the grid drawn from the '
+                             "world's geometry [m/cell] (a map file keeps its own)",
+                             low=0.001, high=10.0, read_only=True)
+        frame = declare(self, 'frame_id', 'map', 'Frame of the map', read_only=True)
+        if not path:
+            raise ValueError('parameter world_file is required')
+        world = load_world_file(Path(path))   # WorldError (a ValueError): one line, exit 2
+        grid = world.grid if world.grid is not None and not len(world.segments) \
+            and not len(world.circles) else world_grid(world, resolution)
+        msg = OccupancyGridMsg()
+        msg.header.frame_id = frame
+        msg.info.resolution = grid.resolution
+        msg.info.width, msg.info.height = grid.width, grid.height
+        msg.info.origin.position.x, msg.info.origin.position.y = grid.origin[:2]
+        msg.info.origin.orientation = yaw_to_quaternion(grid.origin[2])
+        msg.data = grid.data.ravel().tolist()
+        self.create_publisher(OccupancyGridMsg, '/map', LATCHED_QOS).publish(msg)
+        self.get_logger().info(f'/map: {grid.width} x {grid.height} cells of '
+                               f'{grid.resolution} m from {path}')
+
+
+def main(args=None) -> None:
+    """Run the world publisher until Ctrl-C."""
+    run_node(WorldPublisherNode, args, executor_factory=EventsExecutor)
