@@ -15,6 +15,9 @@ recorder`` offers the recorder node message rates from 5 000 to 30 000 per secon
 what reaches its bag; see :mod:`robotica_sim.benchmarks.recorder`. ``robotica bench view`` runs
 the demo with and without TF and markers, interleaved, and once with the Foxglove relay, whose
 forwarded messages it compares with the bag's; see :mod:`robotica_sim.benchmarks.visualisation`.
+``robotica bench raycast`` times a 360-beam scan against 200 walls and a 1000 x 1000 grid,
+next to a plain NumPy loop and a Python cell traversal; see
+:mod:`robotica_sim.benchmarks.raycast`.
 """
 import argparse
 import dataclasses
@@ -29,6 +32,7 @@ from robotica_sim.benchmarks.arm import core_benchmark, loop_benchmark, round_tr
 from robotica_sim.benchmarks.kinematics import BenchmarkRow, run_kinematics_benchmark
 from robotica_sim.benchmarks.measurement_row import MeasurementRow
 from robotica_sim.benchmarks.mobile import mobile_core_benchmark
+from robotica_sim.benchmarks.raycast import raycast_benchmark
 from robotica_sim.benchmarks.recorder import RATES, recorder_benchmark
 from robotica_sim.benchmarks.tracking import (format_tracking_table, PATHS, plot_tracking,
                                               POSE_SOURCES, tracking_benchmark, VEHICLES)
@@ -37,8 +41,8 @@ from robotica_sim.benchmarks.your_node import your_node_benchmark
 from robotica_sim.cli.options import integer, path, real
 
 HELP = ('measure the speed of the kinematics, the arm loop, the mobile loop, the tracking '
-        "laws, the recorder, the viewer or a user's node (robotica bench kin|arm|mobile|"
-        'tracking|recorder|view|your_node)')
+        "laws, the recorder, the viewer, a user's node or ray casting (robotica bench kin|"
+        'arm|mobile|tracking|recorder|view|your_node|raycast)')
 EPILOG = """examples:
   robotica bench kin                       1000 configurations per robot, Markdown table
   robotica bench kin --count 200 --json    quicker, machine-readable
@@ -56,8 +60,10 @@ EPILOG = """examples:
   robotica bench view --runs 1 --no-relay
   robotica bench your_node                 the demo 3 times with the built-in and 3 with a
                                            Python tracker (robotica new's template)
+  robotica bench raycast                   360-beam scans against walls and a grid (seconds)
+  robotica bench raycast --count 200 --json
 """
-SUITES = ('kin', 'arm', 'mobile', 'tracking', 'recorder', 'view', 'your_node')
+SUITES = ('kin', 'arm', 'mobile', 'tracking', 'recorder', 'view', 'your_node', 'raycast')
 # Upper bounds of the sizes: beyond them a benchmark runs for hours (1e7 DDS round trips, a
 # day-long ROS loop) or fills the memory (1e7 batched Jacobians are 2.9 GB), and a typo should
 # not be taken for such a request.
@@ -75,10 +81,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         'tracking = the path-tracking laws on three vehicles, '
                         "recorder = the recorder node's throughput, "
                         "view = the cost of TF and markers and the relay's throughput, "
-                        "your_node = the cost of a user's Python tracker in the demo")
+                        "your_node = the cost of a user's Python tracker in the demo, "
+                        'raycast = ray casting on the world model')
     parser.add_argument('--count', type=integer(1, MAX_COUNT), default=1000,
                         help='kin: random configurations per robot; arm: simulated steps of '
-                        'the core and DDS round trips (default 1000; arm: at least 5000 steps '
+                        'the core and DDS round trips; raycast: scans per world '
+                        '(default 1000; arm: at least 5000 steps '
                         f'are used for the core; at most {MAX_COUNT})')
     parser.add_argument('--loop-duration', type=real(0.0, MAX_LOOP_DURATION),
                         help='arm, mobile: simulated seconds of the full ROS loop; 0 skips it '
@@ -92,7 +100,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         f'{MAX_BASELINE_IK})')
     parser.add_argument('--seed', type=integer(0, 2**32 - 1), default=0,
                         help='kin: seed of the configurations; tracking: seed of the sensor '
-                        'noise (default 0)')
+                        'noise; raycast: seed of the worlds and origins (default 0)')
     parser.add_argument('--laws', nargs='+', choices=LAWS, default=list(LAWS),
                         metavar='LAW', help=f'tracking: laws to run, of {", ".join(LAWS)}')
     parser.add_argument('--vehicles', nargs='+', choices=VEHICLES, default=list(VEHICLES),
@@ -148,6 +156,8 @@ def main(args: argparse.Namespace) -> int:
         return _view(args, progress)
     if args.suite == 'your_node':
         return _your_node(args, progress)
+    if args.suite == 'raycast':
+        return _print_rows(args, raycast_benchmark(args.count, args.seed, progress))
     rows = run_kinematics_benchmark(args.count, args.baseline_ik_count, args.seed, progress)
     if args.json:
         print(json.dumps([dataclasses.asdict(row) for row in rows], indent=2))
