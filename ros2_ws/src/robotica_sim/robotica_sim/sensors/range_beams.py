@@ -13,7 +13,7 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-__all__ = ['SampleSchedule', 'check_mounts', 'cone_offsets', 'mounted_frames', 'range_noise']
+__all__ = ['SampleSchedule', 'check_mounts', 'cone_offsets', 'mounted_frames', 'noisy_readings']
 
 
 def check_mounts(mounts: ArrayLike, name: str = 'mounts') -> NDArray[np.float64]:
@@ -68,19 +68,25 @@ def cone_offsets(half_angle: float, rays: int) -> NDArray[np.float64]:
     return np.linspace(-half_angle, half_angle, rays)
 
 
-def range_noise(rng: np.random.Generator, ranges: NDArray[np.float64], sigma0: float,
-                sigma_per_metre: float) -> NDArray[np.float64]:
+def noisy_readings(rng: np.random.Generator, nearest: NDArray[np.float64],
+                   detected: NDArray[np.bool_], min_range: float, max_range: float,
+                   sigma0: float, sigma_per_metre: float) -> NDArray[np.float64]:
     """
-    Return ``ranges`` [m] plus normal noise of standard deviation σ = σ0 + k·r.
+    Return a Range sensor's readings (n,) [m] of its ``nearest`` ranges (n,) [m].
 
-    Non-finite ranges are returned as they are (a draw is spent on each all the same, so the
-    draws do not depend on what was hit).
+    Where ``detected``: the range (``min_range`` if nearer) plus normal noise of standard
+    deviation σ = σ0 + k·r, clipped to [min_range, max_range]; elsewhere ``max_range``, no
+    noise (the sensor's "nothing"). One normal draw per sensor whatever it detected, so that
+    the draws do not depend on the world.
+
+    >>> noisy_readings(np.random.default_rng(0), np.array([0.05, 2.0, np.inf]),
+    ...                np.array([True, True, False]), 0.1, 5.0, 0.0, 0.0).tolist()
+    [0.1, 2.0, 5.0]
     """
-    w = rng.standard_normal(ranges.shape)
-    finite = np.isfinite(ranges)
-    noisy = ranges.copy()
-    noisy[finite] += (sigma0 + sigma_per_metre * ranges[finite]) * w[finite]
-    return noisy
+    w = rng.standard_normal(nearest.shape)
+    r = np.where(detected, np.maximum(nearest, min_range), 0.0)
+    noisy = np.clip(r + (sigma0 + sigma_per_metre * r) * w, min_range, max_range)
+    return np.where(detected, noisy, max_range)
 
 
 class SampleSchedule:

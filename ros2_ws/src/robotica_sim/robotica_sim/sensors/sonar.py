@@ -42,7 +42,7 @@ from robotica_kin.parameter_specs import ParameterSpec, seed_spec
 from robotica_kin.world import cast_rays, World
 from robotica_sim.sensors.preset_terms import params_from_parameters, preset_term_specs
 from robotica_sim.sensors.range_beams import (check_mounts, cone_offsets, mounted_frames,
-                                              range_noise)
+                                              noisy_readings)
 
 __all__ = ['SONAR_PARAMETERS', 'SONAR_PRESETS', 'SONAR_TERMS', 'SonarParams', 'SonarRing',
            'sonar_params', 'sonar_ranges', 'sonar_term_specs', 'speed_of_sound']
@@ -252,9 +252,8 @@ def sonar_ranges(params: SonarParams, world: World, pose: ArrayLike, mounts: Arr
     origins, axes = mounted_frames(pose, check_mounts(mounts))
     nearest = _echo_paths(p, world, origins, axes).min(axis=1) * p.scale
     heard = nearest <= p.max_range
-    readings = range_noise(rng, np.where(heard, np.maximum(nearest, p.min_range), np.inf),
-                           p.range_noise, p.range_noise_per_metre)
-    return np.where(heard, np.clip(readings, p.min_range, p.max_range), p.max_range)
+    return noisy_readings(rng, nearest, heard, p.min_range, p.max_range, p.range_noise,
+                          p.range_noise_per_metre)
 
 
 class SonarRing:
