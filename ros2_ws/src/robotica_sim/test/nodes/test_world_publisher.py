@@ -5,8 +5,8 @@ Reference: a 1 m wall along y = 0.2 m drawn at 0.5 m cells with the 0.5 m margin
 starts at (-0.5, -0.5), 4 x 3 cells, and the wall occupies the 4 cells of the row whose
 centres are at y = 0.25 m (each within half a diagonal of it); the others are free.
 """
-import pytest
 from nav_msgs.msg import OccupancyGrid
+import pytest
 from robotica_kin.ros.qos import LATCHED_QOS
 
 pytestmark = pytest.mark.ros
