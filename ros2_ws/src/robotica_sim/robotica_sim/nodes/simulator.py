@@ -15,6 +15,19 @@ odometry wheels' angles and rates and the steering angles on ``joint_states`` (f
 emulator and the state publisher: the joint names of the vehicle's URDF,
 ``VehicleKinematics.odometry_wheel_joints``), each stamped with the sim time of its step, and
 ``~/status`` (robotica_msgs/SimulatorStatus).
+
+With ``world_file`` (a map_server map, or a YAML file with a ``world:`` section such as the run's
+scenario: :func:`robotica_kin.world.world_file.load_world_file`; '' = no world, the behaviour
+without obstacles), the vehicle's footprint (``footprint.radius`` or ``footprint.polygon``,
+default the outline a viewer draws) stops where it touches an obstacle
+(:mod:`robotica_sim.simulation.contact`), and every step is reported on ``bumper``
+(robotica_msgs/Contact: in contact or not, the contact point and normal, the contacts so far
+and the time in contact). A new type because no standard one carries a contact: common_interfaces
+has no bumper message, and Gazebo's ``ros_gz_interfaces/Contacts`` (or ``gazebo_msgs``) is
+Gazebo's, lists collision bodies and has no notion of a contact's start; a PointStamped would
+not say when the robot is free. ``~/status`` counts the contacts and the time in contact. A
+world file that cannot be read, or an initial pose inside an obstacle, ends the node (exit 2)
+with one line.
 Service ``~/start`` (std_srvs/Trigger) starts the run when ``autostart`` is false. Pacing
 (``realtime`` or ``lockstep``) and the end of the run are those of
 :class:`~robotica_sim.nodes.stepped_simulator.SteppedSimulatorNode`. A command older than
@@ -32,7 +45,8 @@ from robotica_kin.ros.convert import odometry_message, planar_transform, seconds
 from robotica_kin.ros.entry_point import run_node
 from robotica_kin.ros.parameters import declare, declare_specs
 from robotica_kin.ros.qos import COMMAND_QOS, STREAM_PUB_QOS, TF_QOS
-from robotica_msgs.msg import VehicleCommand
+from robotica_kin.world.world_file import load_world_file
+from robotica_msgs.msg import Contact, VehicleCommand
 from robotica_sim.nodes.stepped_simulator import SteppedSimulatorNode
 from robotica_sim.simulation.vehicle import SIMULATOR_PARAMETERS, vehicle_simulation
 from sensor_msgs.msg import JointState
@@ -45,7 +59,12 @@ class SimulatorNode(SteppedSimulatorNode):
     def __init__(self) -> None:
         super().__init__('simulator', default_step_period=0.02, command_topic='cmd_vel')
         params = declare_specs(self, SIMULATOR_PARAMETERS)
-        self._sim = vehicle_simulation(params, self.step_period)
+        world_file = declare(self, 'world_file', '',
+                             'The obstacles: a map_server map or a YAML file with a world: '
+                             "section (a scenario); '': none", read_only=True)
+        world = load_world_file(world_file) if world_file else None   # WorldError: exit 2
+        self._sim = vehicle_simulation(params, self.step_period, world)
+        self.contacts = self._sim.contacts   # 1 when it starts touching
         vehicle_type = params['vehicle.type']
         self._steered = vehicle_type in STEERED_TYPES
         if self._steered:
@@ -66,6 +85,9 @@ class SimulatorNode(SteppedSimulatorNode):
                         else None)
         self._joints_pub = self.create_publisher(JointState, 'joint_states', STREAM_PUB_QOS,
                                                  allow_nan=('velocity',))
+        self._bumper_pub = None if world is None else self.create_publisher(
+            Contact, 'bumper', STREAM_PUB_QOS,
+            allow_nan=tuple(f'{f}.{a}' for f in ('point', 'normal') for a in 'xyz'))
         if self._steered:
             self.create_subscription(VehicleCommand, 'vehicle_command', self._on_vehicle_command,
                                      COMMAND_QOS)
@@ -118,6 +140,20 @@ class SimulatorNode(SteppedSimulatorNode):
         if self._tf_pub is not None:
             self._tf_pub.publish(TFMessage(transforms=[planar_transform(
                 t, self._world_frame, self._truth_frame, self._sim.pose)]))
+        if self._bumper_pub is not None:
+            self._bumper_pub.publish(self._bumper(stamp))
+
+    def _bumper(self, stamp) -> Contact:
+        sim = self._sim
+        msg = Contact(in_contact=sim.in_contact, contacts=sim.contacts,
+                      time_in_contact=sim.time_in_contact)
+        msg.header.stamp = stamp
+        msg.header.frame_id = self._world_frame
+        z = 0.0 if sim.in_contact else math.nan   # x, y are NaN too when free
+        msg.point.x, msg.point.y = (float(v) for v in sim.contact_point)
+        msg.normal.x, msg.normal.y = (float(v) for v in sim.contact_normal)
+        msg.point.z = msg.normal.z = z
+        return msg
 
     def step_plant(self) -> None:
         """Advance the vehicle one step; stop it (and log the change) when the command is stale."""
@@ -132,7 +168,13 @@ class SimulatorNode(SteppedSimulatorNode):
             else:
                 self.get_logger().info(f'commands resumed at t = {self._sim.t:.3f} s')
         self._was_stale = stale
+        was_touching = self._sim.in_contact
         self._sim.step()
+        self.contacts, self.time_in_contact = self._sim.contacts, self._sim.time_in_contact
+        if self._sim.in_contact and not was_touching:
+            x, y = (float(v) for v in self._sim.contact_point)
+            self.get_logger().warn(f'contact at t = {self._sim.t:.3f} s, at ({x:.3f}, {y:.3f}) '
+                                   f'm: stopped ({self._sim.contacts} so far)')
 
 
 def main(args=None) -> None:

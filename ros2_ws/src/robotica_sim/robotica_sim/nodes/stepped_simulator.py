@@ -101,6 +101,8 @@ class SteppedSimulatorNode(GuardedNode):
         self._answers = 0
         self._timeouts = 0
         self.stale_steps = 0
+        self.contacts = 0              # contacts with the world (the plant counts them)
+        self.time_in_contact = 0.0     # [s] simulated time in contact with the world
         self._steps = 0
         self._next_status = 0.0
         self._wall_start = 0.0
@@ -181,7 +183,9 @@ class SteppedSimulatorNode(GuardedNode):
         wall = time.monotonic() - self._wall_start
         status = SimulatorStatus(step=self._steps, lockstep_timeouts=self._timeouts,
                                  stale_command_stops=self.stale_steps, finished=finished,
-                                 real_time_factor=self.sim_time / wall if wall > 0 else 0.0)
+                                 real_time_factor=self.sim_time / wall if wall > 0 else 0.0,
+                                 contacts=self.contacts,
+                                 time_in_contact=float(self.time_in_contact))
         status.header.stamp = seconds_to_stamp(self.sim_time)
         self._status_pub.publish(status)
 
@@ -270,5 +274,7 @@ class SteppedSimulatorNode(GuardedNode):
         self.get_logger().info(
             f'finished at t = {self.sim_time:.3f} s after {self._steps} steps in '
             f'{wall:.2f} s wall (real-time factor {self.sim_time / max(wall, 1e-9):.1f}); '
-            f'lockstep timeouts {self._timeouts}, stale-command steps {self.stale_steps}')
+            f'lockstep timeouts {self._timeouts}, stale-command steps {self.stale_steps}'
+            + (f', contacts {self.contacts} ({self.time_in_contact:.2f} s)' if self.contacts
+               else ''))
         return 0

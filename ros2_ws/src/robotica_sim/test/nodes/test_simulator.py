@@ -1,6 +1,10 @@
 """
 Node tests of the simulator: motion under a command, the stale-command brake, refused input.
 
+With a world, a circle of radius r = 0.3 m driven at 1 m/s towards a wall at x = 1.005 m stops
+at x = 0.705 m (t = 0.705 s, in step 36 of 20 ms); steps 37 to 75 (end_time 1.5 s) begin in
+contact: 39 steps, 0.78 s in contact (hand computation).
+
 A 0.5 m/s forward command for the differential drive of the default parameters moves the robot
 along +x (REP-103); once no command arrives for cmd_timeout, the ground-truth twist is zero.
 """
@@ -13,7 +17,7 @@ from nav_msgs.msg import Odometry
 import pytest
 from rclpy.qos import QoSProfile, ReliabilityPolicy
 from robotica_kin.urdf import vehicle_urdf
-from robotica_msgs.msg import VehicleCommand
+from robotica_msgs.msg import Contact, SimulatorStatus, VehicleCommand
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import JointState
 from tf2_msgs.msg import TFMessage
@@ -166,3 +170,37 @@ def test_slip_beyond_its_range_is_refused(start_node, read_output):
     assert proc.wait(timeout=30) == 2
     text = read_output(proc)
     assert 'longitudinal_slip' in text and 'Traceback' not in text
+
+
+def test_a_world_stops_the_robot_at_a_wall_and_the_bumper_reports_it(start_node, ros_node,
+                                                                     spin, tmp_path):
+    node, executor = ros_node
+    world = tmp_path / 'world.yaml'
+    world.write_text('world:\n  walls: [[1.005, -2.0, 1.005, 2.0]]\n')
+    start_node('robotica_sim', 'simulator', '-p', f'world_file:={world}',
+               '-p', 'footprint.radius:=0.3', '-p', 'pacing:=lockstep', '-p', 'end_time:=1.5')
+    truth, bumper, status = [], [], []
+    node.create_subscription(Odometry, 'ground_truth/odom', truth.append, QOS)
+    node.create_subscription(Contact, 'bumper', bumper.append, QOS)
+    node.create_subscription(SimulatorStatus, '/simulator/status', status.append, QOS)
+    cmd = node.create_publisher(Twist, 'cmd_vel', CMD_QOS)
+    forward = Twist()
+    forward.linear.x = 1.0
+    node.create_subscription(Odometry, 'ground_truth/odom', lambda _: cmd.publish(forward), QOS)
+    assert spin(executor, lambda: status and status[-1].finished, timeout=60)
+    assert truth[-1].pose.pose.position.x == pytest.approx(0.705, abs=1e-9)
+    assert truth[-1].twist.twist.linear.x == 0.0
+    last = bumper[-1]
+    assert last.in_contact and last.contacts == 1 and last.header.frame_id == 'map'
+    assert (last.point.x, last.point.y) == pytest.approx((1.005, 0.0), abs=1e-9)
+    assert (last.normal.x, last.normal.y) == pytest.approx((-1.0, 0.0), abs=1e-9)
+    assert not bumper[0].in_contact and math.isnan(bumper[0].point.x)
+    assert status[-1].contacts == 1
+    assert status[-1].time_in_contact == pytest.approx(0.78, abs=1e-9)
+
+
+def test_a_missing_world_file_is_one_line_and_exit_2(start_node, read_output, tmp_path):
+    proc = start_node('robotica_sim', 'simulator', '-p', f'world_file:={tmp_path}/none.yaml')
+    assert proc.wait(timeout=30) == 2
+    text = read_output(proc)
+    assert 'none.yaml: cannot read the world file' in text and 'Traceback' not in text
