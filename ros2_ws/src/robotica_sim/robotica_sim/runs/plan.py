@@ -24,6 +24,7 @@ from typing import Any, Callable, Mapping, Optional
 import numpy as np
 from robotica_ctrl.joint_control.control_laws import FIRST_PERIOD, make_joint_law
 from robotica_ctrl.mobile import path_shapes
+from robotica_ctrl.mobile.reactive_navigation import NAVIGATOR_PARAMETERS, navigator_params
 from robotica_ctrl.mobile.tracking_laws import (check_gains, law_for_path, LAW_PARAMETERS,
                                                 TRACKER_PARAMETERS)
 from robotica_ctrl.trajectory.joint_reference import reference_samples
@@ -52,6 +53,11 @@ CONTROLLER_STATE_TOPIC = '/joint_controller/controller_state'
 TRAJECTORY_TOPIC = '/joint_controller/joint_trajectory'
 TF_TOPICS = ('/tf', '/tf_static', '/robot_description')   # the state publisher's (and /tf)
 MARKERS_TOPIC = '/markers'   # the markers node's MarkerArray: what a viewer draws of the run
+NAVIGATOR_STATE_TOPIC = '/reactive_navigator/state'   # its behaviour's state (std_msgs/String)
+MAP_TOPIC = '/map'   # the world, drawn by world_publisher (nav_msgs/OccupancyGrid, latched)
+NAVIGATOR_NODE_KEYS = {'pose_source': 'odom', 'range_timeout': 0.5,
+                       'max_unknown_fraction': 0.5}
+"""navigator: keys that are the node's own parameters, not the behaviours' (their defaults)."""
 RECORDED_TOPICS = ('/clock', '/cmd_vel', '/odom', '/ground_truth/odom', '/joint_states',
                    '/wheel_encoders', '/path', TRACKING_ERROR_TOPIC, STATUS_TOPIC, '/rosout',
                    *TF_TOPICS, MARKERS_TOPIC)
@@ -201,6 +207,10 @@ def recorded_topics(scenario: Scenario) -> tuple[str, ...]:
     topics = list(RECORDED_TOPICS)
     if scenario.robot.type in STEERED_TYPES:
         topics[topics.index('/cmd_vel')] = '/vehicle_command'
+    if scenario.navigator.behaviour:
+        topics[topics.index(TRACKING_ERROR_TOPIC)] = NAVIGATOR_STATE_TOPIC
+    if scenario.world:
+        topics.append(MAP_TOPIC)
     for sensor, sensor_topics in SENSOR_TOPICS.items():
         if getattr(scenario.sensors, sensor).enabled:
             topics.extend(sensor_topics)
@@ -618,6 +628,44 @@ def _law_gains(law: str, params: dict) -> dict:
             if key.startswith(f'{law}.')}
 
 
+def _flat(values: Mapping, prefix: str = '') -> dict:
+    """Return nested mappings as dotted keys: {'wall': {'side': 'left'}} -> {'wall.side': ...}."""
+    flat: dict = {}
+    for key, value in values.items():
+        if isinstance(value, dict):
+            flat.update(_flat(value, f'{prefix}{key}.'))
+        else:
+            flat[f'{prefix}{key}'] = value
+    return flat
+
+
+def _navigator(scenario: Scenario) -> NodeSpec:
+    """
+    Return the reactive navigator of a scenario's ``navigator`` section, checked as it checks.
+
+    Its gains are the node's parameters by name (nested or dotted in the scenario); a number
+    given as an integer is passed as the float the parameter is (rclpy refuses an int there).
+    """
+    where = scenario.source or scenario.name
+    params = {'behaviour': scenario.navigator.behaviour,
+              **_flat(scenario.navigator.gains)}
+    known = set(NAVIGATOR_PARAMETERS) | set(NAVIGATOR_NODE_KEYS)
+    unknown = sorted(set(params) - known)
+    if unknown:
+        raise ScenarioError(f'{where}: navigator.{unknown[0]} is not a parameter of the '
+                            f'reactive navigator; its parameters: {", ".join(sorted(known))}')
+    for key, value in params.items():
+        default = NAVIGATOR_PARAMETERS[key].default if key in NAVIGATOR_PARAMETERS \
+            else NAVIGATOR_NODE_KEYS[key]
+        if isinstance(default, (float, tuple)) and not isinstance(value, str):
+            numbers = _numbers(value, f'{where}: navigator.{key}')
+            params[key] = numbers if isinstance(default, tuple) else numbers[0]
+    _node_check(where, 'navigator', {key: f'navigator.{key}' for key in params},
+                lambda: navigator_params({k: v for k, v in params.items()
+                                          if k in NAVIGATOR_PARAMETERS}))
+    return NodeSpec('robotica_ctrl', 'reactive_navigator', 'reactive_navigator', params)
+
+
 def _plan_mobile(scenario: Scenario) -> list[NodeSpec]:
     where = scenario.source or scenario.name
     robot = scenario.robot
@@ -660,6 +708,7 @@ def _plan_mobile(scenario: Scenario) -> list[NodeSpec]:
             'frame_id': scenario.path.frame_id}, use_sim_time=False),
         *sensors,
         NodeSpec('robotica_sim', 'odometry', 'odometry', estimator),
+        _navigator(scenario) if scenario.navigator.behaviour else
         NodeSpec('robotica_ctrl', 'path_tracker', 'path_tracker',
                  {'law': scenario.tracker.law, **gains,
                   'command_type': 'steering' if steered else 'twist',
@@ -669,6 +718,9 @@ def _plan_mobile(scenario: Scenario) -> list[NodeSpec]:
                  {**vehicle, **STATE_PUBLISHER_INPUT}, use_sim_time=False),
         NodeSpec('robotica_sim', 'markers', 'markers', {**vehicle, **_origin(scenario)},
                  use_sim_time=False),
+        *([NodeSpec('robotica_sim', 'world_publisher', 'world_publisher',
+                    {'world_file': str(scenario.source)}, use_sim_time=False)]
+          if scenario.world else []),
         NodeSpec('robotica_sim', 'simulator', 'simulator',
                  {**simulator, 'enable_stamped_cmd_vel': STAMPED_CMD_VEL}, use_sim_time=False),
     ]

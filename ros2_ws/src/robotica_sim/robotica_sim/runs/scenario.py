@@ -22,6 +22,8 @@ from typing import Any, Optional
 
 from robotica_kin.mobile.odometry import ODOMETRY_METHODS
 from robotica_kin.mobile.vehicles import VEHICLE_TYPES
+from robotica_kin.world.errors import WorldError
+from robotica_kin.world.world_section import world_from_mapping
 from robotica_sim.runs.shipped import resolve_shipped
 from robotica_sim.runs.strict_yaml import read_strict_yaml
 from robotica_sim.sensors.gps import GPS_PRESETS
@@ -185,6 +187,19 @@ class TrackerSpec:
     external: Optional[ExternalSpec] = None
 
 
+@dataclass(frozen=True)
+class NavigatorSpec:
+    """
+    The reactive navigator instead of the path tracker (§9.6, §12.7): its behaviour and gains.
+
+    ``gains`` are the node's parameters by name (``wall.desired_distance``, ``goal``, ...,
+    given nested or dotted); an empty ``behaviour``: no navigator, the tracker runs.
+    """
+
+    behaviour: str = ''
+    gains: dict = field(default_factory=dict)
+
+
 ARM_MODELS = ('puma560', 'two_link_arm')
 MIN_STEP_PERIOD = 1e-4              # [s] simulated
 MAX_STEPS = 10_000_000              # simulation steps of a run (duration / step_period)
@@ -192,7 +207,7 @@ SEED_MAX = (2**31 - 1) // 10 - 1
 """The largest seed: each sensor emulator gets 10 seed + k (k < 10), which its ``seed``
 parameter takes up to 2**31 - 1."""
 INT64_MAX = 2**63 - 1               # an integer parameter of a node is int64
-MOBILE_SECTIONS = ('path', 'sensors', 'odometry', 'tracker')
+MOBILE_SECTIONS = ('path', 'sensors', 'odometry', 'tracker', 'navigator', 'world')
 MAX_ANSWER_TIMEOUT = 600.0          # [s] of an external node's answer_timeout
 ARM_SECTIONS = ('arm', 'reference', 'controller')
 
@@ -257,6 +272,8 @@ class Scenario:
     sensors: SensorsSpec = SensorsSpec()
     odometry: OdometrySpec = OdometrySpec()
     tracker: TrackerSpec = TrackerSpec()
+    navigator: NavigatorSpec = NavigatorSpec()
+    world: dict = field(default_factory=dict)     # obstacles: robotica_kin.world.world_section
     arm: ArmSpec = ArmSpec()
     reference: ReferenceSpec = ReferenceSpec()
     controller: ControllerSpec = ControllerSpec()
@@ -423,7 +440,8 @@ def _normalise(data: dict) -> dict:
     for section, fixed, free in (('tracker', ('law', 'external'), 'gains'),
                                  ('reference', ('generator',), 'args'),
                                  ('controller', ('law', 'model_masses', 'use_friction',
-                                                 'external'), 'gains')):
+                                                 'external'), 'gains'),
+                                 ('navigator', ('behaviour',), 'gains')):
         if isinstance(data.get(section), dict):
             values = dict(data[section])
             data[section] = {free: values, **{k: values.pop(k) for k in fixed if k in values}}
@@ -439,6 +457,9 @@ def _check_sections(data: dict, where: str) -> None:
         kind = 'manipulator' if manipulator else 'mobile robot'
         raise ScenarioError(f'{where}: section(s) {", ".join(foreign)} do not apply to a '
                             f'{kind} run')
+    if 'navigator' in data and 'tracker' in data:
+        raise ScenarioError(f'{where}: sections navigator and tracker: the reactive navigator '
+                            'replaces the path tracker; give one of them')
     for section in ('tracker', 'odometry', 'controller'):
         values = data.get(section)
         if isinstance(values, dict) and 'external' in values and len(values) > 1:
@@ -466,7 +487,13 @@ def load_scenario(name_or_path: str) -> Scenario:
     data.setdefault('name', path.stem)
     data['source'] = str(path)
     _check_sections(data, str(path))
-    return _build(Scenario, _normalise(data), str(path))
+    scenario = _build(Scenario, _normalise(data), str(path))
+    if scenario.world:
+        try:   # every key and a map file checked now; the nodes load the same section
+            world_from_mapping(scenario.world, path.parent)
+        except WorldError as err:
+            raise ScenarioError(f'{path}: {err}') from None
+    return scenario
 
 
 def with_overrides(scenario: Scenario, **options: Any) -> Scenario:
