@@ -97,7 +97,8 @@ class LaserParams:
     @property
     def angles(self) -> NDArray[np.float64]:
         """Return each beam's angle [rad] in the scanner's frame, n of them."""
-        return self.angle_min + self.angle_increment * np.arange(self.beams)
+        return np.asarray(self.angle_min + self.angle_increment * np.arange(self.beams),
+                          dtype=np.float64)
 
 
 # Scanners. The book gives only the 0.3 m ↔ 2 ns of §12.3 (taken as range_min); every other
