@@ -7,7 +7,8 @@ with its unit, topics and definition; docs/grading.md explains them):
 - **mobile** (path tracking, book ch. 9): cross-track and heading errors of the ground truth
   against the reference ``/path`` (the closest point is searched within a window around the
   progress, as the trackers do, so that a closed or self-crossing path is followed lap by
-  lap), completion, time, path length, control effort, collisions;
+  lap), completion, time, path length, control effort, collisions and time in contact (from
+  the simulator's ``/bumper``, recorded when the run has a world);
 - **estimation** (book ch. 7): the error of the ``/odom`` estimate against the ground truth,
   interpolated at the estimate's stamps, and the fraction of samples within 3 sigma;
 - **arm** (book ch. 8): joint errors ``e = q_d - q`` (8.30) of the joint controller, settling
@@ -15,8 +16,9 @@ with its unit, topics and definition; docs/grading.md explains them):
   kinematics (4.6) of the scenario's arm.
 
 A metric whose topic the bag lacks is *absent* (in :attr:`RunMetrics.absent`, with the
-reason), never zero; a metric that exists but cannot be defined for this run (no map for
-collisions, no step reference for overshoot) is None with a note.
+reason), never zero (a run without a world has no ``/bumper``: its collisions are absent); a
+metric that exists but cannot be defined for this run (no step reference for overshoot) is
+None with a note.
 
 For the sensor figures of ``robotica report``: :func:`reading_error` (a reading minus the truth
 at its stamp) and :func:`normal_fit` (mean, standard deviation of an error).
@@ -32,9 +34,9 @@ from robotica_kin.angles import wrap_to_pi
 from robotica_sim.grading.series import RunSeries, Series, TOPICS
 
 __all__ = ['METRICS', 'MetricInfo', 'MetricParams', 'MetricValue', 'RunMetrics',
-           'compute_metrics', 'energy', 'max_abs', 'normal_fit', 'overshoot', 'path_errors',
-           'pose_errors', 'reading_error', 'rms', 'settling_time', 'total_variation',
-           'travelled_length']
+           'compute_metrics', 'contact_events', 'energy', 'max_abs', 'normal_fit', 'overshoot',
+           'path_errors', 'pose_errors', 'reading_error', 'rms', 'settling_time',
+           'total_variation', 'travelled_length']
 
 MetricValue = float | bool | list[float | None] | None
 """A metric's value: a number, a flag, one number per joint (None: n/a for that joint)."""
@@ -116,8 +118,12 @@ METRICS: dict[str, MetricInfo] = {
     'max_trajectory_error': MetricInfo(
         'm', 'mobile', (_TRUTH, _PATH), 'largest distance, as rms_trajectory_error'),
     'collisions': MetricInfo(
-        'count', 'mobile', (_TRUTH,),
-        "contacts with obstacles of the scenario's map; n/a: no scenario has a map yet"),
+        'count', 'mobile', (TOPICS['bumper'],),
+        "contacts with the obstacles of the scenario's world: a contact starts when the "
+        'robot touches after being free (the simulator stops it there)'),
+    'time_in_contact': MetricInfo(
+        's', 'mobile', (TOPICS['bumper'],),
+        'simulated time the robot spent touching the world: the steps that began in contact'),
     'rms_position_error': MetricInfo(
         'm', 'estimation', (_ODOM, _TRUTH),
         'RMS of the /odom position error against the truth interpolated at the odom stamps'),
@@ -394,6 +400,25 @@ def energy(t: ArrayLike, tau: ArrayLike, qdot: ArrayLike) -> float:
     return float(np.sum(0.5 * (power[1:] + power[:-1]) * np.diff(times)))
 
 
+def contact_events(t: ArrayLike, in_contact: ArrayLike) -> tuple[int, float]:
+    """
+    Return the contacts and the time in contact [s] of a bumper's samples.
+
+    ``t`` (n,) [s] in increasing order, ``in_contact`` (n,) true where the robot touches. A
+    contact starts at a sample in contact whose predecessor is free (or the first sample);
+    the time in contact is the sum of t[k + 1] - t[k] over the samples k in contact (the
+    steps that began in contact: the simulator's own count).
+
+    >>> contact_events([0.0, 0.1, 0.2, 0.3, 0.4], [0, 1, 1, 0, 1])
+    (2, 0.2)
+    """
+    times = np.asarray(t, dtype=np.float64)
+    touching = np.asarray(in_contact, dtype=bool)
+    starts = touching & ~np.concatenate([[False], touching[:-1]])
+    time = float(np.sum(np.diff(times)[touching[:-1]]))
+    return int(np.count_nonzero(starts)), round(time, 12)
+
+
 def _lacks(run: RunSeries, topics: tuple[str, ...]) -> str:
     """Return why the run cannot give a metric that needs ``topics``."""
     missing = [topic for topic in topics if not run.counts.get(topic)]
@@ -417,8 +442,9 @@ def _mobile(run: RunSeries, params: MetricParams, out: RunMetrics) -> None:
     truth = run.truth
     if truth is not None:
         values['path_length'] = travelled_length(truth['x'], truth['y'])
-        values['collisions'] = None
-        notes['collisions'] = 'the scenario has no map or obstacles'
+    if run.bumper is not None:
+        values['collisions'], values['time_in_contact'] = contact_events(
+            run.bumper.t, run.bumper['in_contact'])
     if truth is not None and run.path is not None and len(run.path) >= 2:
         path = PolylinePath(run.path)
         s, cross, heading = path_errors(path, truth['x'], truth['y'], truth['theta'],
@@ -620,6 +646,8 @@ def compute_metrics(run: RunSeries, params: MetricParams | None = None) -> RunMe
             reason += f' (or {TOPICS["tracking_error"]})'
         elif info.topics == _JOINT_ERROR:
             reason += f' (or {_CONTROLLER})'
+        elif name in ('collisions', 'time_in_contact'):
+            reason += ' (the simulator publishes it when the run has a world)'
         out.absent[name] = reason
     return out
 

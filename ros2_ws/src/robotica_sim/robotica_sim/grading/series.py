@@ -51,6 +51,7 @@ TOPICS = {
     'trajectory': '/joint_controller/joint_trajectory',
     'torques': '/joint_torques',
     'status': '/simulator/status',
+    'bumper': '/bumper',
 }
 """The topics :func:`load_run` reads, by the role they play in a run."""
 
@@ -70,6 +71,7 @@ MSGTYPES = {
     'trajectory': 'trajectory_msgs/msg/JointTrajectory',
     'torques': 'std_msgs/msg/Float64MultiArray',
     'status': 'robotica_msgs/msg/SimulatorStatus',
+    'bumper': 'robotica_msgs/msg/Contact',
 }
 """The message type each role's topic must have; a topic of another type is ignored."""
 
@@ -128,6 +130,7 @@ class RunSeries:
       ``reference``: ``position``, ``velocity`` (n, joints), the reference
       (``/joint_controller/joint_trajectory``) at the times of ``joint_states``: what the
       grading compares the simulator's joints with; ``torques``: ``effort`` (n, joints).
+    - ``bumper`` (``/bumper``, a simulator with a world): ``in_contact`` (1.0 or 0.0) each step.
     """
 
     bag: Path
@@ -151,6 +154,7 @@ class RunSeries:
     msgtypes: dict[str, str] = field(default_factory=dict)  # type of every topic of the bag
     ignored: dict[str, str] = field(default_factory=dict)   # known topic of another type: why
     run: RunRecord = field(default_factory=RunRecord)       # the run's settings and nodes
+    bumper: Series | None = None        # the simulator's contacts with the world
 
     @property
     def is_manipulator(self) -> bool:
@@ -212,6 +216,10 @@ def _compass(msg: Any) -> tuple[float, ...]:
     return _stamp(msg), _yaw(msg.orientation), msg.orientation_covariance[8]
 
 
+def _bumper(msg: Any) -> tuple[float, ...]:
+    return _stamp(msg), float(msg.in_contact)
+
+
 def _gps(msg: Any) -> tuple[float, ...]:
     cov = msg.position_covariance   # ENU: [0] east, [4] north
     return _stamp(msg), msg.latitude, msg.longitude, msg.altitude, cov[0], cov[4]
@@ -228,6 +236,7 @@ _SCALAR: dict[str, tuple[tuple[str, ...], Callable[[Any], tuple[float, ...]]]] =
     'imu': (('wz',), _imu),
     'compass': (('theta', 'var_theta'), _compass),
     'gps': (('latitude', 'longitude', 'altitude', 'var_e', 'var_n'), _gps),
+    'bumper': (('in_contact',), _bumper),
 }
 
 # Joint series: topic role -> (column -> message field).
@@ -459,7 +468,8 @@ def load_run(bag: str | Path, topics: Iterable[str] | None = None) -> RunSeries:
         tracking_error=series['tracking_error'], imu=series['imu'], compass=series['compass'],
         gps=series['gps'], joint_states=joints['joint_states'], controller=joints['controller'],
         reference=_joint_reference(decoded.get('trajectory'), joints['joint_states']),
-        torques=joints['torques'], status=status, msgtypes=msgtypes, ignored=ignored)
+        torques=joints['torques'], status=status, msgtypes=msgtypes, ignored=ignored,
+        bumper=series['bumper'])
 
 
 def gps_origin(scenario: dict | None) -> GeodeticOrigin:

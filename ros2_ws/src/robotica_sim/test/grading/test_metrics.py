@@ -14,16 +14,19 @@ import numpy as np
 import pytest
 from robotica_ctrl.mobile.path import PolylinePath
 from robotica_ctrl.mobile.path_shapes import circle, figure_eight, straight_line
-from robotica_sim.grading.metrics import (compute_metrics, energy, MetricParams, METRICS,
-                                          normal_fit, overshoot, path_errors, reading_error,
-                                          rms, settling_time, total_variation)
+from robotica_sim.grading.metrics import (compute_metrics, contact_events, energy,
+                                          MetricParams, METRICS, normal_fit, overshoot,
+                                          path_errors, reading_error, rms, settling_time,
+                                          total_variation)
+from robotica_sim.grading.rubric import check_metrics, parse_rubric
 from robotica_sim.grading.series import RunSeries, Series, TOPICS
 
 
 def make_run(scenario=None, duration=0.0, path=None, path_times=None, **series):
     """Return a RunSeries with the given series; counts as a bag of them would have."""
     roles = {'truth': 'truth', 'odom': 'odom', 'tracking_error': 'tracking_error',
-             'joint_states': 'joint_states', 'controller': 'controller', 'torques': 'torques'}
+             'joint_states': 'joint_states', 'controller': 'controller', 'torques': 'torques',
+             'bumper': 'bumper'}
     counts = {TOPICS[roles[name]]: len(s) for name, s in series.items() if name in roles}
     cmd = series.get('cmd')
     if cmd is not None:
@@ -34,7 +37,7 @@ def make_run(scenario=None, duration=0.0, path=None, path_times=None, **series):
         counts[TOPICS['clock']] = 1
     fields = {name: series.get(name) for name in (
         'truth', 'odom', 'cmd', 'tracking_error', 'imu', 'compass', 'gps', 'joint_states',
-        'controller', 'torques')}
+        'controller', 'torques', 'bumper')}
     return RunSeries(bag=Path('synthetic'), scenario=scenario, duration=duration, counts=counts,
                      path=None if path is None else np.asarray(path, dtype=float),
                      path_times=path_times, status=None, **fields)
@@ -63,7 +66,7 @@ def test_constant_offset_from_a_straight_path():
     assert m['finished'] is False
     assert m['path_length'] == pytest.approx(4.0)
     assert m['time'] == 4.0
-    assert m['collisions'] is None
+    assert 'collisions' not in m and 'time_in_contact' not in m   # no world: no /bumper
 
 
 def test_sine_error_has_rms_amplitude_over_sqrt_2():
@@ -373,3 +376,31 @@ def test_normal_fit_of_known_samples():
     assert (mean, count) == (5.0, 8)
     assert std == pytest.approx(math.sqrt(32.0 / 7.0))
     assert normal_fit([1.0])[0] == 1.0 and math.isnan(normal_fit([1.0])[1])
+
+
+def test_collisions_and_time_in_contact_from_the_bumper():
+    # 51 steps of 20 ms; touching at samples 10-19 and 30-50 (the end): 2 contacts, and the
+    # steps that began in contact are 10 + 20 = 30, 0.6 s.
+    t = np.arange(51) * 0.02
+    touching = np.zeros(51)
+    touching[10:20] = touching[30:] = 1.0
+    run = make_run(bumper=Series(t, {'in_contact': touching}), duration=1.0)
+    metrics = compute_metrics(run)
+    assert metrics.values['collisions'] == 2
+    assert metrics.values['time_in_contact'] == pytest.approx(0.6, abs=1e-12)
+    (check,) = check_metrics(parse_rubric({'checks': {'collisions': {'max': 0}}}), metrics, None)
+    assert not check.passed and check.message == 'collisions = 2, want <= 0'
+    free = compute_metrics(make_run(bumper=Series(t, {'in_contact': np.zeros(51)})))
+    assert free.values['collisions'] == 0 and free.values['time_in_contact'] == 0.0
+
+
+def test_collisions_are_absent_without_a_bumper_topic():
+    absent = compute_metrics(make_run(duration=1.0)).absent
+    assert absent['collisions'] == absent['time_in_contact'] == (
+        'needs topic /bumper, which the bag lacks (the simulator publishes it when the run '
+        'has a world)')
+
+
+def test_a_robot_touching_from_the_start_is_one_contact():
+    assert contact_events([0.0, 0.02, 0.04], [1, 1, 1]) == (1, 0.04)
+    assert contact_events([0.0], [0]) == (0, 0.0)

@@ -128,7 +128,8 @@ def mobile_topics(types):
         '/simulator/status': ('robotica_msgs/msg/SimulatorStatus', [
             (t, types['robotica_msgs/msg/SimulatorStatus'](
                 header=_header(types, t), step=k, real_time_factor=2.5, lockstep_timeouts=1,
-                stale_command_stops=0, finished=k == N - 1)) for k, t in enumerate(times)]),
+                stale_command_stops=0, finished=k == N - 1, contacts=0,
+                time_in_contact=0.0)) for k, t in enumerate(times)]),
     }
 
 

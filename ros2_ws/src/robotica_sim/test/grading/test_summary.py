@@ -88,7 +88,8 @@ def figure_eight_bag(tmp_path_factory):
         write('/clock', t, types['rosgraph_msgs/msg/Clock'](clock=stamp(types, t)))
     write('/simulator/status', (steps - 1) * DT, types['robotica_msgs/msg/SimulatorStatus'](
         header=header(types, (steps - 1) * DT), step=steps - 1, real_time_factor=12.5,
-        lockstep_timeouts=2, stale_command_stops=0, finished=True))
+        lockstep_timeouts=2, stale_command_stops=0, finished=True, contacts=0,
+        time_in_contact=0.0))
     writer.close()
     return path, steps
 
