@@ -16,12 +16,11 @@ from numpy.typing import NDArray
 from rclpy.experimental import EventsExecutor
 from robotica_kin.ros.entry_point import run_node
 from robotica_sim.nodes.range_sensor_node import RangeSensorNode
-from robotica_sim.sensors.infrared import (INFRARED_PARAMETERS, infrared_params,
-                                           infrared_ranges, infrared_term_specs)
+from robotica_sim.sensors.infrared import (INFRARED_MOUNTS, INFRARED_PARAMETERS,
+                                           infrared_params, infrared_ranges,
+                                           infrared_term_specs)
 from sensor_msgs.msg import Range
 
-FRONT_THREE = (0.15, 0.0, 0.0, 0.1, 0.1, 0.785398, 0.1, -0.1, -0.785398)
-"""The default sensors: one ahead and two at ±45° at the front corners."""
 
 
 class InfraredEmulatorNode(RangeSensorNode):
@@ -31,7 +30,7 @@ class InfraredEmulatorNode(RangeSensorNode):
         super().__init__('infrared_emulator')
         values = self.declare_terms(INFRARED_PARAMETERS, infrared_term_specs)
         self._params = infrared_params(values)
-        self._mounts, self._frames, self._pubs = self.declare_sensors('infrared', FRONT_THREE)
+        self._mounts, self._frames, self._pubs = self.declare_sensors('infrared', INFRARED_MOUNTS)
         self._rng = np.random.default_rng(values['seed'])
         self.start(self._params.rate)
         self.get_logger().info(f'infrared preset {values["preset"]!r}, '

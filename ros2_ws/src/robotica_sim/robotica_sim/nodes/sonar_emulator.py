@@ -17,12 +17,10 @@ from numpy.typing import NDArray
 from rclpy.experimental import EventsExecutor
 from robotica_kin.ros.entry_point import run_node
 from robotica_sim.nodes.range_sensor_node import RangeSensorNode
-from robotica_sim.sensors.sonar import SONAR_PARAMETERS, sonar_params, sonar_term_specs, SonarRing
+from robotica_sim.sensors.sonar import (SONAR_MOUNTS, SONAR_PARAMETERS, sonar_params,
+                                        sonar_term_specs, SonarRing)
 from sensor_msgs.msg import Range
 
-RING_OF_8 = tuple(float(v) for k in range(8) for v in (
-    0.2 * np.cos(k * np.pi / 4), 0.2 * np.sin(k * np.pi / 4), k * np.pi / 4))
-"""The default ring: 8 transducers every 45° on a circle of 0.2 m, facing out."""
 
 
 class SonarEmulatorNode(RangeSensorNode):
@@ -32,7 +30,7 @@ class SonarEmulatorNode(RangeSensorNode):
         super().__init__('sonar_emulator')
         values = self.declare_terms(SONAR_PARAMETERS, sonar_term_specs)
         self._params = sonar_params(values)
-        mounts, self._frames, self._pubs = self.declare_sensors('sonar', RING_OF_8)
+        mounts, self._frames, self._pubs = self.declare_sensors('sonar', SONAR_MOUNTS)
         self._ring = SonarRing(self._params, mounts, np.random.default_rng(values['seed']))
         self.start(self._params.cycle_rate)
         self.get_logger().info(f'sonar preset {values["preset"]!r}, {len(self._frames)} '

@@ -33,7 +33,7 @@ from robotica_sim.sensors.preset_terms import params_from_parameters, preset_ter
 from robotica_sim.sensors.range_beams import (check_mounts, cone_offsets, mounted_frames,
                                               noisy_readings)
 
-__all__ = ['INFRARED_PARAMETERS', 'INFRARED_PRESETS', 'INFRARED_TERMS', 'InfraredParams',
+__all__ = ['INFRARED_MOUNTS', 'INFRARED_PARAMETERS', 'INFRARED_PRESETS', 'INFRARED_TERMS', 'InfraredParams',
            'infrared_params', 'infrared_ranges', 'infrared_term_specs']
 
 _DEG = math.pi / 180.0   # [rad] per degree
@@ -97,6 +97,10 @@ INFRARED_PRESETS: dict[str, InfraredParams] = {
 """Infrared sensors by name; values and sources in the comments of the source."""
 
 _DEFAULT = INFRARED_PRESETS['sharp_gp2y0a21']
+
+INFRARED_MOUNTS = (0.15, 0.0, 0.0, 0.1, 0.1, 0.785398, 0.1, -0.1, -0.785398)
+"""The default sensors: one ahead and two at ±45° at the front corners: (x [m], y [m], yaw
+[rad]) in base_link, three numbers a sensor (the node's ``mounts``)."""
 
 INFRARED_TERMS: dict[str, ParameterSpec] = {
     'cone_half_angle': ParameterSpec(_DEFAULT.cone_half_angle, 'Half the beam [rad]; '

@@ -44,7 +44,7 @@ from robotica_sim.sensors.preset_terms import params_from_parameters, preset_ter
 from robotica_sim.sensors.range_beams import (check_mounts, cone_offsets, mounted_frames,
                                               noisy_readings)
 
-__all__ = ['SONAR_PARAMETERS', 'SONAR_PRESETS', 'SONAR_TERMS', 'SonarParams', 'SonarRing',
+__all__ = ['SONAR_MOUNTS', 'SONAR_PARAMETERS', 'SONAR_PRESETS', 'SONAR_TERMS', 'SonarParams', 'SonarRing',
            'sonar_params', 'sonar_ranges', 'sonar_term_specs', 'speed_of_sound']
 
 _DEG = math.pi / 180.0   # [rad] per degree
@@ -135,6 +135,11 @@ SONAR_PRESETS: dict[str, SonarParams] = {
 """Sonar transducers by name; values and sources in the comments of the source."""
 
 _DEFAULT = SONAR_PRESETS['polaroid_6500']
+
+SONAR_MOUNTS = tuple(float(v) for k in range(8) for v in (
+    0.2 * math.cos(k * math.pi / 4), 0.2 * math.sin(k * math.pi / 4), k * math.pi / 4))
+"""The default ring: 8 transducers every 45° on a circle of 0.2 m, facing out: (x [m], y [m],
+yaw [rad]) in base_link, three numbers a transducer (the node's ``mounts``)."""
 
 SONAR_TERMS: dict[str, ParameterSpec] = {
     'cone_half_angle': ParameterSpec(_DEFAULT.cone_half_angle, 'Half the beam cone [rad], '

@@ -34,7 +34,8 @@ def _required(tmp_path: Path) -> dict[str, dict]:
     world.write_text('world:\n  walls: [[3.0, -5.0, 3.0, 5.0]]\n')
     return {'recorder': {'output': str(tmp_path / 'bag')},
             **{sensor: {'world_file': str(world)}
-               for sensor in ('sonar_emulator', 'infrared_emulator', 'laser_emulator')},
+               for sensor in ('sonar_emulator', 'infrared_emulator', 'laser_emulator',
+                              'world_publisher')},
             'path_publisher': {'x': [0.0, 1.0], 'y': [0.0, 0.0]},
             'joint_trajectory_publisher': {'joint_names': ['joint_1']},
             'view_relay': {'port': 0}}   # any free port: the default one may be in use
