@@ -22,7 +22,6 @@ from robotica_sim.sensors.infrared import (INFRARED_MOUNTS, INFRARED_PARAMETERS,
 from sensor_msgs.msg import Range
 
 
-
 class InfraredEmulatorNode(RangeSensorNode):
     """Publish the readings of infrared proximity sensors moving with the true pose."""
 

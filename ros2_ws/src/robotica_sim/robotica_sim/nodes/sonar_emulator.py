@@ -22,7 +22,6 @@ from robotica_sim.sensors.sonar import (SONAR_MOUNTS, SONAR_PARAMETERS, sonar_pa
 from sensor_msgs.msg import Range
 
 
-
 class SonarEmulatorNode(RangeSensorNode):
     """Publish the readings of a sonar ring moving with the true pose."""
 

@@ -33,8 +33,8 @@ from robotica_sim.sensors.preset_terms import params_from_parameters, preset_ter
 from robotica_sim.sensors.range_beams import (check_mounts, cone_offsets, mounted_frames,
                                               noisy_readings)
 
-__all__ = ['INFRARED_MOUNTS', 'INFRARED_PARAMETERS', 'INFRARED_PRESETS', 'INFRARED_TERMS', 'InfraredParams',
-           'infrared_params', 'infrared_ranges', 'infrared_term_specs']
+__all__ = ['INFRARED_MOUNTS', 'INFRARED_PARAMETERS', 'INFRARED_PRESETS', 'INFRARED_TERMS',
+           'InfraredParams', 'infrared_params', 'infrared_ranges', 'infrared_term_specs']
 
 _DEG = math.pi / 180.0   # [rad] per degree
 

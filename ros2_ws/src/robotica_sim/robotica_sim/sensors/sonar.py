@@ -44,8 +44,8 @@ from robotica_sim.sensors.preset_terms import params_from_parameters, preset_ter
 from robotica_sim.sensors.range_beams import (check_mounts, cone_offsets, mounted_frames,
                                               noisy_readings)
 
-__all__ = ['SONAR_MOUNTS', 'SONAR_PARAMETERS', 'SONAR_PRESETS', 'SONAR_TERMS', 'SonarParams', 'SonarRing',
-           'sonar_params', 'sonar_ranges', 'sonar_term_specs', 'speed_of_sound']
+__all__ = ['SONAR_MOUNTS', 'SONAR_PARAMETERS', 'SONAR_PRESETS', 'SONAR_TERMS', 'SonarParams',
+           'SonarRing', 'sonar_params', 'sonar_ranges', 'sonar_term_specs', 'speed_of_sound']
 
 _DEG = math.pi / 180.0   # [rad] per degree
 _EPSILON = 1e-9          # [m] the second cast starts this far off the first surface
