@@ -33,12 +33,17 @@ from robotica_kin.mobile.odometry_fusion import ODOMETRY_PARAMETERS
 from robotica_kin.mobile.vehicles import GEOMETRY_PARAMETERS, STEERED_TYPES, vehicle_kinematics
 from robotica_kin.parameter_specs import check_parameters, ParameterError
 from robotica_kin.robots import puma560, robot_by_name, two_link_arm
+from robotica_kin.world.world_section import world_from_mapping
 from robotica_sim.runs.roles import Role, role_contract, ROLE_SECTIONS, topic_name
 from robotica_sim.runs.scenario import ExternalSpec, Scenario, ScenarioError
 from robotica_sim.sensors.compass import compass_params
 from robotica_sim.sensors.encoder import encoder_params
 from robotica_sim.sensors.gps import gps_configuration, gps_params, GPS_TERMS
 from robotica_sim.sensors.gyro import gyro_params, GYRO_TERMS
+from robotica_sim.sensors.infrared import INFRARED_MOUNTS, INFRARED_PARAMETERS, infrared_params
+from robotica_sim.sensors.laser import LASER_PARAMETERS, laser_params
+from robotica_sim.sensors.range_beams import check_mounts
+from robotica_sim.sensors.sonar import SONAR_MOUNTS, SONAR_PARAMETERS, sonar_params
 from robotica_sim.simulation.arm import arm_simulation
 from robotica_sim.simulation.vehicle import vehicle_simulation
 
@@ -55,8 +60,10 @@ TF_TOPICS = ('/tf', '/tf_static', '/robot_description')   # the state publisher'
 MARKERS_TOPIC = '/markers'   # the markers node's MarkerArray: what a viewer draws of the run
 NAVIGATOR_STATE_TOPIC = '/reactive_navigator/state'   # its behaviour's state (std_msgs/String)
 MAP_TOPIC = '/map'   # the world, drawn by world_publisher (nav_msgs/OccupancyGrid, latched)
+BUMPER_TOPIC = '/bumper'   # the simulator's contact with the world (robotica_msgs/Contact)
 NAVIGATOR_NODE_KEYS = {'pose_source': 'odom', 'range_timeout': 0.5,
-                       'max_unknown_fraction': 0.5}
+                       'max_unknown_fraction': 0.5, 'laser.pose': (0.0, 0.0, 0.0),
+                       'range.topics': '', 'range.poses': (0.0,)}
 """navigator: keys that are the node's own parameters, not the behaviours' (their defaults)."""
 RECORDED_TOPICS = ('/clock', '/cmd_vel', '/odom', '/ground_truth/odom', '/joint_states',
                    '/wheel_encoders', '/path', TRACKING_ERROR_TOPIC, STATUS_TOPIC, '/rosout',
@@ -210,10 +217,11 @@ def recorded_topics(scenario: Scenario) -> tuple[str, ...]:
     if scenario.navigator.behaviour:
         topics[topics.index(TRACKING_ERROR_TOPIC)] = NAVIGATOR_STATE_TOPIC
     if scenario.world:
-        topics.append(MAP_TOPIC)
+        topics += [MAP_TOPIC, BUMPER_TOPIC]
     for sensor, sensor_topics in SENSOR_TOPICS.items():
         if getattr(scenario.sensors, sensor).enabled:
             topics.extend(sensor_topics)
+    topics += [topic for mounted in _range_topics(scenario).values() for topic, _ in mounted]
     return tuple(topics)
 
 
@@ -234,6 +242,7 @@ def followed_topics(scenario: Scenario) -> tuple[str, ...]:
     topics += [topic for sensor, topic in (('gyro', '/imu/data'),
                                            ('compass', '/compass/heading'))
                if getattr(scenario.sensors, sensor).enabled]
+    topics += [mounted[0][0] for mounted in _range_topics(scenario).values() if mounted]
     return tuple(topics)
 
 
@@ -482,7 +491,8 @@ def _arm_description(plant: dict) -> dict:
                                              .ravel())}
 
 
-SENSOR_SEEDS = {'encoder': 1, 'gyro': 2, 'compass': 3, 'gps': 4}
+SENSOR_SEEDS = {'encoder': 1, 'gyro': 2, 'compass': 3, 'gps': 4, 'laser': 5, 'sonar': 6,
+                'infrared': 7}
 """Each sensor emulator's seed is 10 x the scenario's seed + its number here."""
 ORIGIN_KEYS = {f'origin.{name}': f'sensors.gps.origin[{i}] ({name})'
                for i, name in enumerate(('latitude', 'longitude', 'altitude'))}
@@ -509,6 +519,10 @@ def _mobile_sensors(scenario: Scenario) -> list[NodeSpec]:
     if sensors.gps.enabled:
         emulators.append(('gps', {**_gps_parameters(scenario), **_origin(scenario)},
                           'sensors.gps', gps_configuration))
+    for kind in ('laser', 'sonar', 'infrared'):
+        if getattr(sensors, kind).enabled:
+            emulators.append((kind, _range_sensor_parameters(scenario, kind),
+                              f'sensors.{kind}', RANGE_SENSOR_CHECKS[kind]))
     nodes = []
     for sensor, params, section, configuration in emulators:
         params['seed'] = scenario.seed * 10 + SENSOR_SEEDS[sensor]
@@ -518,6 +532,77 @@ def _mobile_sensors(scenario: Scenario) -> list[NodeSpec]:
         nodes.append(NodeSpec('robotica_sim', f'{sensor}_emulator', f'{sensor}_emulator',
                               params))
     return nodes
+
+
+def _check_laser(params: dict) -> None:
+    laser_params(params)
+    check_mounts(params.get('mount', (0.0, 0.0, 0.0)), 'mount')
+
+
+def _check_ring(parameters: Callable[[dict], Any], default_mounts: tuple[float, ...]
+                ) -> Callable[[dict], None]:
+    def check(params: dict) -> None:
+        parameters(params)
+        mounts = params.get('mounts', default_mounts)
+        if len(mounts) % 3:
+            raise ParameterError('mounts', f'must hold (x, y, yaw) triples, got {len(mounts)} '
+                                 'numbers')
+        check_mounts(np.reshape(mounts, (-1, 3)))
+    return check
+
+
+RANGE_SENSOR_CHECKS: dict[str, Callable[[dict], None]] = {
+    'laser': _check_laser, 'sonar': _check_ring(sonar_params, SONAR_MOUNTS),
+    'infrared': _check_ring(infrared_params, INFRARED_MOUNTS)}
+"""Each range sensor node's start-up check of its parameters (the model's, and the mounts)."""
+RANGE_SENSOR_KEYS = {'laser': (LASER_PARAMETERS, ('mount', 'frame_id')),
+                     'sonar': (SONAR_PARAMETERS, ('mounts', 'frame_prefix')),
+                     'infrared': (INFRARED_PARAMETERS, ('mounts', 'frame_prefix'))}
+"""The parameters each range sensor node takes: its model's specs and its node's own keys."""
+
+
+def _range_sensor_parameters(scenario: Scenario, kind: str) -> dict:
+    """
+    Return a range sensor emulator's parameters from ``sensors.<kind>`` (on the run's world).
+
+    The node reads the world from the scenario file (``world_file``); numbers given as integers
+    are passed as the floats the parameters are.
+    """
+    where = scenario.source or scenario.name
+    spec = getattr(scenario.sensors, kind)
+    if not scenario.world or not scenario.source:
+        raise ScenarioError(f'{where}: sensors.{kind} needs a world: section (its obstacles)')
+    specs, own = RANGE_SENSOR_KEYS[kind]
+    unknown = sorted(set(spec.settings) - set(specs) - set(own))
+    if unknown:
+        raise ScenarioError(f'{where}: sensors.{kind}.{unknown[0]} is not a parameter of the '
+                            f'{kind} emulator; its parameters: '
+                            f'{", ".join(sorted((set(specs) | set(own)) - {"seed"}))}')
+    params: dict = {'world_file': str(scenario.source)}
+    if spec.preset:
+        params['preset'] = spec.preset
+    for key, value in spec.settings.items():
+        spec_default = specs[key].default if key in specs else None
+        if key in ('mount', 'mounts') or isinstance(spec_default, float):
+            numbers = _numbers(value, f'{where}: sensors.{kind}.{key}')
+            value = numbers if key in ('mount', 'mounts') else numbers[0]
+        params[key] = value
+    return params
+
+
+def _range_topics(scenario: Scenario) -> dict[str, list[tuple[str, tuple[float, ...]]]]:
+    """Return each enabled range sensor's topics with their mounts (x, y, yaw) in base_link."""
+    topics = {}
+    for kind, default, topic in (('laser', (0.0, 0.0, 0.0), '/scan'),
+                                 ('sonar', SONAR_MOUNTS, '/sonar_{}'),
+                                 ('infrared', INFRARED_MOUNTS, '/infrared_{}')):
+        spec = getattr(scenario.sensors, kind)
+        if spec.enabled:
+            mounts = [float(v) for v in spec.settings.get(
+                'mount' if kind == 'laser' else 'mounts', default)]
+            topics[kind] = [(topic.format(i), tuple(mounts[3 * i:3 * i + 3]))
+                            for i in range(len(mounts) // 3)]
+    return topics
 
 
 def _gyro_parameters(scenario: Scenario) -> dict:
@@ -647,7 +732,12 @@ def _navigator(scenario: Scenario) -> NodeSpec:
     given as an integer is passed as the float the parameter is (rclpy refuses an int there).
     """
     where = scenario.source or scenario.name
+    sensors = _range_topics(scenario)
+    ranges = sensors.get('sonar', []) + sensors.get('infrared', [])
     params = {'behaviour': scenario.navigator.behaviour,
+              **({'laser.pose': list(sensors['laser'][0][1])} if 'laser' in sensors else {}),
+              **({'range.topics': [t.lstrip('/') for t, _ in ranges],
+                  'range.poses': [v for _, mount in ranges for v in mount]} if ranges else {}),
               **_flat(scenario.navigator.gains)}
     known = set(NAVIGATOR_PARAMETERS) | set(NAVIGATOR_NODE_KEYS)
     unknown = sorted(set(params) - known)
@@ -685,8 +775,14 @@ def _plan_mobile(scenario: Scenario) -> list[NodeSpec]:
         'step_period': scenario.step_period, 'pacing': scenario.pacing,
         'lockstep.follow_topics': list(followed_topics(scenario)),
         'end_time': scenario.duration, 'autostart': False, **pose}
-    _node_check(where, 'robot', SIMULATOR_KEYS,
-                lambda: vehicle_simulation(simulator, scenario.step_period))
+    world = None
+    if scenario.world and scenario.source:   # the obstacles it stops at: the scenario's own
+        simulator['world_file'] = scenario.source
+        world = world_from_mapping(scenario.world, Path(scenario.source).parent)
+    if robot.footprint_radius > 0.0:
+        simulator['footprint.radius'] = robot.footprint_radius
+    _node_check(where, 'robot', {**SIMULATOR_KEYS, 'footprint.radius': 'robot.footprint_radius'},
+                lambda: vehicle_simulation(simulator, scenario.step_period, world))
     sensors = _mobile_sensors(scenario)   # checked before the odometry's GPS model uses them
     odometry = scenario.odometry
     estimator = {

@@ -50,6 +50,7 @@ class RobotSpec:
     steering_time_constant: float = 0.0            # [s]
     longitudinal_slip: float = 0.0                 # [-] in [0, 1)
     initial_pose: tuple[float, ...] = (0.0, 0.0, 0.0)   # x [m], y [m], theta [rad] REP-103
+    footprint_radius: float = 0.0                  # [m] contact circle; 0: the outline
 
 
 @dataclass(frozen=True)
@@ -134,6 +135,20 @@ class GpsSpec:
 
 
 @dataclass(frozen=True)
+class RangeSensorSpec:
+    """
+    A range sensor on the world (laser scanner, sonar ring, infrared sensors; book §7.4, §12.3).
+
+    ``preset`` gives the starting values of its terms ('' the emulator's default); every other
+    key is one of the emulator's parameters (a term, ``mount``/``mounts``), checked by the plan.
+    """
+
+    enabled: bool = False
+    preset: str = ''
+    settings: dict = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
 class SensorsSpec:
     """Sensor emulators of the run (encoders always; the others when enabled)."""
 
@@ -141,6 +156,9 @@ class SensorsSpec:
     gyro: GyroSpec = GyroSpec()
     compass: CompassSpec = CompassSpec()
     gps: GpsSpec = GpsSpec()
+    laser: RangeSensorSpec = RangeSensorSpec()
+    sonar: RangeSensorSpec = RangeSensorSpec()
+    infrared: RangeSensorSpec = RangeSensorSpec()
 
 
 @dataclass(frozen=True)
@@ -430,9 +448,19 @@ def _build(cls: Any, data: dict, where: str) -> Any:
     return cls(**{k: _convert(v, hints[k], f'{where}.{k}') for k, v in data.items()})
 
 
+RANGE_SENSORS = ('laser', 'sonar', 'infrared')
+
+
 def _normalise(data: dict) -> dict:
     """Fold the free-form sections (path shape arguments, tracker gains) into their fields."""
     data = dict(data)
+    if isinstance(data.get('sensors'), dict):
+        data['sensors'] = dict(data['sensors'])
+        for kind in RANGE_SENSORS:
+            if isinstance(data['sensors'].get(kind), dict):
+                values = dict(data['sensors'][kind])
+                data['sensors'][kind] = {'settings': values, **{
+                    k: values.pop(k) for k in ('enabled', 'preset') if k in values}}
     if isinstance(data.get('path'), dict):
         path = dict(data['path'])
         data['path'] = {k: path.pop(k) for k in ('shape', 'frame_id') if k in path}

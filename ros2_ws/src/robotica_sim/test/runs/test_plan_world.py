@@ -19,8 +19,10 @@ world:
 
 
 def scenario(tmp_path, text):
+    """Write the base scenario with ``text`` (its robot line replaced if text has one)."""
+    base = BASE.replace('robot: {type: differential}\n', '') if 'robot:' in text else BASE
     path = tmp_path / 'scenario.yaml'
-    path.write_text(BASE + text)
+    path.write_text(base + text)
     return str(path)
 
 
@@ -73,4 +75,49 @@ def test_without_a_world_or_a_navigator_nothing_changes(tmp_path):
 def test_bad_sections_are_one_line_before_anything_starts(tmp_path, text, message):
     with pytest.raises(ScenarioError) as err:
         plan_run(load_scenario(scenario(tmp_path, text)))
+    assert message in str(err.value) and '\n' not in str(err.value)
+
+
+def test_range_sensors_on_the_world_feed_the_navigator(tmp_path):
+    path = scenario(tmp_path, WORLD + textwrap.dedent("""\
+        robot: {type: differential, footprint_radius: 0.25}
+        sensors:
+          laser: {enabled: true, preset: sick_lms200_mm, mount: [0.1, 0, 0], range_max: 6}
+          sonar: {enabled: true, mounts: [0, 0.2, 1.5707963267948966, 0, -0.2, -1.5]}
+        navigator: {behaviour: wall_following}
+    """))
+    loaded = load_scenario(path)
+    nodes = by_name(plan_run(loaded))
+    assert nodes['laser_emulator'].parameters == {
+        'world_file': path, 'preset': 'sick_lms200_mm', 'mount': [0.1, 0.0, 0.0],
+        'range_max': 6.0, 'seed': 5}
+    mounts = [0.0, 0.2, 1.5707963267948966, 0.0, -0.2, -1.5]
+    assert nodes['sonar_emulator'].parameters['mounts'] == mounts
+    navigator = nodes['reactive_navigator'].parameters
+    assert navigator['laser.pose'] == [0.1, 0.0, 0.0]
+    assert navigator['range.topics'] == ['sonar_0', 'sonar_1']
+    assert navigator['range.poses'] == mounts
+    simulator = nodes['simulator'].parameters
+    assert simulator['world_file'] == path and simulator['footprint.radius'] == 0.25
+    topics = recorded_topics(loaded)
+    assert {'/scan', '/sonar_0', '/sonar_1', '/bumper', '/map'} <= set(topics)
+    assert {'/scan', '/sonar_0'} <= set(simulator['lockstep.follow_topics'])
+
+
+@pytest.mark.parametrize('text, message', [
+    ('sensors: {laser: {enabled: true}}\n', 'sensors.laser needs a world: section'),
+    (WORLD + 'sensors: {sonar: {enabled: true, beams: 3}}\n',
+     'sensors.sonar.beams is not a parameter of the sonar emulator'),
+    (WORLD + 'sensors: {sonar: {enabled: true, mounts: [0, 0]}}\n',
+     'sensors.sonar.mounts must hold (x, y, yaw) triples'),
+    (WORLD + 'sensors: {laser: {enabled: true, range_max: -1}}\n',
+     'sensors.laser.range_max must be in'),
+    (WORLD + 'sensors: {laser: {enabled: true, preset: nope}}\n',
+     'sensors.laser.preset must be one of'),
+    ('robot: {initial_pose: [0.0, 0.5, 0.0]}\n' + WORLD, 'inside an obstacle'),
+])
+def test_bad_sensors_and_poses_are_refused(tmp_path, text, message):
+    path = scenario(tmp_path, text)
+    with pytest.raises(ScenarioError) as err:
+        plan_run(load_scenario(path))
     assert message in str(err.value) and '\n' not in str(err.value)
