@@ -22,7 +22,7 @@ __all__ = ['GRADED_TOPICS', 'format_entry', 'format_value', 'grade_bag', 'json_v
 # Topics the metrics read (the sensors are left out: only `robotica report` plots them).
 GRADED_TOPICS = tuple(TOPICS[role] for role in (
     'clock', 'path', 'truth', 'odom', 'cmd_vel', 'vehicle_command', 'tracking_error',
-    'joint_states', 'controller', 'trajectory', 'torques'))
+    'joint_states', 'controller', 'trajectory', 'torques', 'bumper'))
 
 
 def json_value(value: Any) -> Any:
