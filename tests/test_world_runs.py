@@ -1,0 +1,93 @@
+"""
+The scenarios of worlds, range sensors and contact (issue 19), run and graded end to end.
+
+- corridor_sonar: wall following with sonar round a corner passes its rubric (no contact);
+- room_laser_vff: VFF with a laser reaches the goal across a cluttered room, no contact;
+- potential_trap: the generalised potential stalls in a U: 'stalled' is reported on the
+  navigator's state and the robot stops short of the goal, without touching the U;
+- sonar_specular_failure (fig. 7.19): the front sonar never sees the panel at 45° (its readings
+  while the panel is within 1 m along its axis are longer than the true distance, computed here
+  from the recorded truth and the panel's line x - y = 2.6), and the robot hits it: one
+  collision in the bag, so a rubric that requires none fails.
+"""
+import json
+import math
+from pathlib import Path
+import subprocess
+
+import pytest
+from rosbags.highlevel import AnyReader
+
+pytestmark = [pytest.mark.slow, pytest.mark.ros]
+RUN_TIMEOUT = 300   # [s] wall clock
+
+
+def run(tmp_path, name: str) -> Path:
+    proc = subprocess.run(['robotica', 'run', name, '--output-dir', str(tmp_path / name),
+                           '--visualisation', 'off', '--quiet'],
+                          capture_output=True, text=True, timeout=RUN_TIMEOUT)
+    assert proc.returncode == 0, proc.stderr
+    return tmp_path / name / 'bag'
+
+
+def grade(bag: Path, *args: str) -> tuple[int, dict]:
+    proc = subprocess.run(['robotica', 'grade', str(bag), '--json', '-', *args],
+                          capture_output=True, text=True, timeout=RUN_TIMEOUT)
+    assert proc.returncode in (0, 1), proc.stderr
+    return proc.returncode, json.loads(proc.stdout)
+
+
+def messages(bag: Path, *topics: str) -> dict:
+    out: dict = {topic: [] for topic in topics}
+    with AnyReader([bag]) as reader:
+        wanted = [c for c in reader.connections if c.topic in topics]
+        for connection, _, raw in reader.messages(connections=wanted):
+            out[connection.topic].append(reader.deserialize(raw, connection.msgtype))
+    return out
+
+
+def metric(report: dict, name: str):
+    return report['bags'][0]['metrics'][name]
+
+
+@pytest.mark.parametrize('name', ['corridor_sonar', 'room_laser_vff'])
+def test_passes_its_rubric(tmp_path, ros_domain, name):
+    bag = run(tmp_path, name)
+    code, report = grade(bag, '--rubric', name)
+    assert code == 0, report
+    assert metric(report, 'collisions') == 0
+
+
+def test_the_potential_trap_is_reported(tmp_path, ros_domain):
+    bag = run(tmp_path, 'potential_trap')
+    got = messages(bag, '/reactive_navigator/state', '/ground_truth/odom')
+    assert 'stalled' in [m.data for m in got['/reactive_navigator/state']]
+    last = got['/ground_truth/odom'][-1]
+    assert last.pose.pose.position.x < 3.0 - 0.25      # short of the U's bottom, outside it
+    assert abs(last.twist.twist.linear.x) < 1e-9       # stopped
+    _, report = grade(bag)
+    assert metric(report, 'collisions') == 0
+    assert metric(report, 'completion') < 0.6
+
+
+def test_a_sonar_misses_a_grazing_panel(tmp_path, ros_domain):
+    bag = run(tmp_path, 'sonar_specular_failure')
+    got = messages(bag, '/sonar_0', '/ground_truth/odom')
+    truth = {(m.header.stamp.sec, m.header.stamp.nanosec): m.pose.pose
+             for m in got['/ground_truth/odom']}
+    close = []
+    for reading in got['/sonar_0']:
+        pose = truth[(reading.header.stamp.sec, reading.header.stamp.nanosec)]
+        theta = 2.0 * math.atan2(pose.orientation.z, pose.orientation.w)
+        x = pose.position.x + 0.2 * math.cos(theta)   # the transducer, 0.2 m ahead
+        y = pose.position.y + 0.2 * math.sin(theta)
+        if abs(theta) < 0.05:                         # looking along x: the panel at x - y = 2.6
+            distance = 2.6 + y - x
+            if 0.0 < distance < 1.0:
+                close.append((distance, reading.range))
+    assert close, 'the robot never came within 1 m of the panel'
+    assert all(r > d + 0.5 for d, r in close), close
+    code, report = grade(bag, '--rubric', 'room_laser_vff')   # requires no collision
+    assert metric(report, 'collisions') == 1
+    assert metric(report, 'time_in_contact') > 1.0
+    assert code == 1
