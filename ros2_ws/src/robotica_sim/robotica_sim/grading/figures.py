@@ -9,9 +9,11 @@ files and the page are :mod:`robotica_sim.grading.report`'s. :func:`auto_robot_e
 
 * mobile robot: ``trajectory`` (the reference path, the true trajectory and the ``/odom``
   estimate in the x-y plane of the path frame, equal axes, the robot drawn every
-  ``robot_every`` s), ``tracking_errors`` (cross-track and heading errors of the ground truth
-  against ``/path`` by :func:`robotica_sim.grading.metrics.path_errors`, the projection
-  ``robotica grade`` uses, beside the tracker's own ``/path_tracker/tracking_error``),
+  ``robot_every`` s; in a run with a world, also the world, the range readings at intervals
+  (:func:`laser_points`, :func:`range_beam`) and the contacts), ``tracking_errors``
+  (cross-track and heading errors of the ground truth against ``/path`` by
+  :func:`robotica_sim.grading.metrics.path_errors`, the projection ``robotica grade`` uses,
+  beside the tracker's own ``/path_tracker/tracking_error``),
   ``commands``, ``estimation`` (``/odom`` minus truth with the ±3σ band of its covariance)
   and one figure per sensor, ``gyro``, ``compass``, ``gps``: the reading against the truth
   and a histogram of the reading's error with its fitted normal density;
@@ -39,15 +41,17 @@ from robotica_kin.angles import wrap_to_pi
 from robotica_kin.geodetic import GeodeticOrigin
 from robotica_sim.grading.metrics import (max_abs, normal_fit, path_errors, reading_error,
                                           rms)
-from robotica_sim.grading.series import fixes_to_enu, RunSeries, Series
+from robotica_sim.grading.series import (fixes_to_enu, RANGE_TOPIC, run_world, RunSeries,
+                                         RunWorld, sensor_mounts, Series)
 
 if TYPE_CHECKING:   # Matplotlib is imported lazily, when figures are drawn
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
 __all__ = ['DPI', 'FIGURE_SIZE', 'auto_robot_every', 'commands', 'compass', 'estimation', 'gps',
-           'gyro', 'joint_errors', 'joint_figure', 'joint_torques', 'robot_poses',
-           'sweep_metric', 'tracking_errors', 'trajectory']
+           'gyro', 'joint_errors', 'joint_figure', 'joint_torques', 'laser_points',
+           'range_beam', 'robot_poses', 'scan_every', 'sweep_metric', 'tracking_errors',
+           'trajectory']
 
 DPI = 100                     # [dots per inch] of the PNG files
 FIGURE_SIZE = (8.0, 5.0)      # [in] width, height of a figure
@@ -55,6 +59,12 @@ PANEL_HEIGHT = 1.9            # [in] per row of joint panels beyond two rows
 ROBOT_MARKS = 15              # at most this many intervals between robot poses (automatic)
 ROBOT_EVERY_STEPS = (0.5, 1.0, 2.0, 5.0, 10.0, 20.0, 30.0, 60.0, 120.0, 300.0, 600.0)  # [s]
 ROBOT_SIZE = 0.035            # length of the robot's triangle / larger span of the x-y plot
+SCAN_MARKS = 10              # range readings drawn at about this many times over a run
+SCAN_MARKS_MAX = 12          # ... at the robot's times when they are at most this many
+RANGE_TOLERANCE = 1.0        # [s] a Range reading is drawn within this of its time
+WORLD_COLOUR = '0.2'
+GRID_RGBA = (0.45, 0.45, 0.45, 0.85)      # occupied cells
+UNKNOWN_RGBA = (0.8, 0.8, 0.8, 0.35)      # unknown cells
 HISTOGRAM_BINS = 40
 HISTOGRAM_HEADROOM = 1.35    # y range / highest bar, for the legend
 
@@ -72,6 +82,25 @@ def auto_robot_every(duration: float) -> float:
     """
     for step in ROBOT_EVERY_STEPS:
         if duration / step <= ROBOT_MARKS:
+            return step
+    return ROBOT_EVERY_STEPS[-1]
+
+
+def scan_every(duration: float, robot_every: float) -> float:
+    """
+    Return the period [s] at which range readings are drawn over a run of ``duration`` [s].
+
+    The robot's period ``robot_every`` when it gives at most :data:`SCAN_MARKS_MAX`
+    intervals (the readings drawn where the robot is), else the shortest of
+    :data:`ROBOT_EVERY_STEPS` that gives at most :data:`SCAN_MARKS`.
+
+    >>> scan_every(40.0, 5.0), scan_every(40.0, 0.5), scan_every(600.0, 60.0)
+    (5.0, 5.0, 60.0)
+    """
+    if robot_every > 0.0 and duration / robot_every <= SCAN_MARKS_MAX:
+        return robot_every
+    for step in ROBOT_EVERY_STEPS:
+        if duration / step <= SCAN_MARKS:
             return step
     return ROBOT_EVERY_STEPS[-1]
 
@@ -109,6 +138,74 @@ def robot_poses(t: ArrayLike, x: ArrayLike, y: ArrayLike, theta: ArrayLike,
     marks = np.arange(times[0], times[-1] + 1e-9 * max(1.0, abs(times[-1])), every)
     index = np.minimum(np.searchsorted(times, marks - 1e-9), times.size - 1)
     return poses[index]
+
+
+# --- range readings in the map frame ---------------------------------------------------------
+
+def _sensor_pose(pose: ArrayLike, mount: ArrayLike) -> tuple[float, float, float]:
+    """Return the sensor's (x, y, yaw) in the map frame: ``pose`` composed with ``mount``."""
+    x, y, theta = (float(v) for v in np.asarray(pose, dtype=np.float64).ravel()[:3])
+    mx, my, myaw = (float(v) for v in np.asarray(mount, dtype=np.float64).ravel()[:3])
+    c, s = math.cos(theta), math.sin(theta)
+    return x + c * mx - s * my, y + s * mx + c * my, theta + myaw
+
+
+def laser_points(ranges: ArrayLike, angle_min: float, angle_increment: float,
+                 range_min: float, range_max: float, pose: ArrayLike,
+                 mount: ArrayLike = (0.0, 0.0, 0.0)) -> NDArray[np.float64]:
+    """
+    Return the returns (k, 2) [m] of a LaserScan in the map frame.
+
+    Beam i has angle ``angle_min + i angle_increment`` [rad] in the laser's frame, which sits at
+    ``mount`` (x [m], y [m], yaw [rad]) in ``base_link``, at the robot's ``pose`` (x, y, θ) in
+    the map frame. Only valid readings become points: REP-117's +-inf and NaN, and any range
+    outside [``range_min``, ``range_max``] (sensor_msgs/LaserScan), are left out.
+
+    >>> laser_points([1.0, float('inf'), 2.0], -1.5707963267948966, 1.5707963267948966,
+    ...              0.1, 5.0, [1.0, 0.0, 1.5707963267948966], [0.5, 0.0, 0.0]).round(9) + 0.0
+    array([[ 2. ,  0.5],
+           [-1. ,  0.5]])
+    """
+    r = np.asarray(ranges, dtype=np.float64).ravel()
+    with np.errstate(invalid='ignore'):
+        valid = np.isfinite(r) & (r >= range_min) & (r <= range_max)
+    x, y, yaw = _sensor_pose(pose, mount)
+    angles = yaw + angle_min + angle_increment * np.flatnonzero(valid)
+    return np.column_stack([x + r[valid] * np.cos(angles), y + r[valid] * np.sin(angles)])
+
+
+def range_beam(reading: float, pose: ArrayLike, mount: ArrayLike) -> NDArray[np.float64]:
+    """
+    Return the beam (2, 2) [m] of a Range reading in the map frame: sensor, then the echo.
+
+    The sensor sits at ``mount`` (x [m], y [m], yaw [rad]) in ``base_link``, the robot at
+    ``pose`` (x, y, θ) in the map frame; the echo lies ``reading`` [m] along the beam's axis.
+
+    >>> range_beam(0.5, [1.0, 1.0, 0.0], [0.2, 0.0, 1.5707963267948966]).round(9) + 0.0
+    array([[1.2, 1. ],
+           [1.2, 1.5]])
+    """
+    x, y, yaw = _sensor_pose(pose, mount)
+    return np.array([[x, y], [x + reading * math.cos(yaw), y + reading * math.sin(yaw)]])
+
+
+def _pose_at(truth: Series, t: float) -> Optional[NDArray[np.float64]]:
+    """Return the true pose (3,) at ``t`` [s] (linear; θ unwrapped), None outside its span."""
+    if not len(truth) or not truth.t[0] - 1e-9 <= t <= truth.t[-1] + 1e-9:
+        return None
+    theta = np.unwrap(truth['theta'])
+    return np.array([np.interp(t, truth.t, truth['x']), np.interp(t, truth.t, truth['y']),
+                     np.interp(t, truth.t, theta)])
+
+
+def _nearest(times: NDArray[np.float64], t: float) -> int:
+    """Return the index of the time nearest ``t`` in the sorted, non-empty ``times``."""
+    k = int(np.searchsorted(times, t))
+    if k == 0:
+        return 0
+    if k == len(times) or t - times[k - 1] <= times[k] - t:
+        return k - 1
+    return k
 
 
 # --- drawing helpers ----------------------------------------------------------------------
@@ -177,6 +274,171 @@ def _sensor_axes(fig: 'Figure') -> tuple['Axes', 'Axes']:
     return fig.add_subplot(grid[0, 0]), fig.add_subplot(grid[0, 1])
 
 
+# --- the world, the range readings and the contacts on the trajectory ---------------------
+
+def _draw_world(ax: 'Axes', found: RunWorld) -> str:
+    """Draw the world under the trajectories (map frame); return its sentence of the caption."""
+    from matplotlib.patches import Circle
+    from matplotlib.transforms import Affine2D
+
+    world, parts = found.world, []
+    grid = world.grid
+    if grid is not None:
+        image = np.zeros((grid.height, grid.width, 4))
+        image[grid.data < 0] = UNKNOWN_RGBA
+        image[grid.occupied] = GRID_RGBA
+        x0, y0, yaw = grid.origin
+        width, height = grid.width * grid.resolution, grid.height * grid.resolution
+        placed = Affine2D().rotate(yaw).translate(x0, y0)
+        ax.imshow(image, origin='lower', extent=(0.0, width, 0.0, height),
+                  transform=placed + ax.transData, interpolation='nearest', zorder=0.5)
+        ax.update_datalim(placed.transform([[0.0, 0.0], [width, 0.0], [0.0, height],
+                                            [width, height]]))
+        parts.append(f'the occupied cells of its grid ({grid.width} x {grid.height} cells of '
+                     f'{grid.resolution:g} m, grey)')
+    label: Optional[str] = 'walls and obstacles'
+    segments = np.asarray(world.segments, dtype=np.float64).reshape(-1, 4)
+    if len(segments):
+        # One line, segments separated by NaN: (x1, x2, NaN) per segment.
+        xs = np.column_stack([segments[:, 0], segments[:, 2], np.full(len(segments), np.nan)])
+        ys = np.column_stack([segments[:, 1], segments[:, 3], np.full(len(segments), np.nan)])
+        ax.plot(xs.ravel(), ys.ravel(), color=WORLD_COLOUR, linewidth=1.5, zorder=1.2,
+                solid_capstyle='butt', label=label)
+        label = None
+        parts.append('walls and polygon edges (dark lines)')
+    for cx, cy, radius in np.asarray(world.circles, dtype=np.float64).reshape(-1, 3):
+        ax.add_patch(Circle((cx, cy), radius, facecolor='0.75', edgecolor=WORLD_COLOUR,
+                            linewidth=1.5, zorder=1.2, label=label))
+        label = None
+    if len(world.circles):
+        parts.append('circles')
+    text = (f' The world ({found.source}) is drawn in the map frame, the frame of the ground '
+            f'truth: ' + ', '.join(parts) + '.')
+    if found.note:
+        text += f' Note: {found.note}.'
+    return text
+
+
+def _laser_snapshots(run: RunSeries, truth: Series, marks: NDArray[np.float64],
+                     mount: NDArray[np.float64]) -> tuple[NDArray[np.float64], int]:
+    """Return the returns (k, 2) of the scans nearest ``marks`` and the number of scans."""
+    scans = run.scans
+    if scans is None or not len(scans) or not len(mount):
+        return np.zeros((0, 2)), 0
+    chosen = sorted({_nearest(scans.t, float(t)) for t in marks})
+    points = []
+    for k in chosen:
+        pose = _pose_at(truth, float(scans.t[k]))
+        if pose is not None:
+            points.append(laser_points(scans['ranges'][k], scans['angle_min'][k],
+                                       scans['angle_increment'][k], scans['range_min'][k],
+                                       scans['range_max'][k], pose, mount[0]))
+    return (np.vstack(points) if points else np.zeros((0, 2))), len(points)
+
+
+def _range_snapshots(run: RunSeries, truth: Series, marks: NDArray[np.float64],
+                     tolerance: float) -> dict[tuple[str, bool], list[NDArray[np.float64]]]:
+    """Return the beams (2, 2) at ``marks`` by (kind, echo): a no-echo one to max_range."""
+    beams: dict[tuple[str, bool], list[NDArray[np.float64]]] = {}
+    mounts = {kind: sensor_mounts(run.scenario, kind) for kind in ('sonar', 'infrared')
+              if any(topic.startswith(f'/{kind}_') for topic in run.ranges)}
+    for topic, readings in run.ranges.items():
+        match = RANGE_TOPIC.fullmatch(topic)
+        if match is None or not len(readings):
+            continue
+        kind, index = match.group(1), int(match.group(2))
+        if index >= len(mounts[kind]):
+            continue
+        chosen = sorted({k for k in (_nearest(readings.t, float(t)) for t in marks)
+                         if np.any(np.abs(readings.t[k] - marks) <= tolerance)})
+        for k in chosen:
+            reading, longest = float(readings['range'][k]), float(readings['max_range'][k])
+            pose = _pose_at(truth, float(readings.t[k]))
+            if pose is None or not reading >= 0.0:
+                continue   # NaN or negative: no reading
+            echo = reading < longest   # max_range or +inf: no echo (REP-117)
+            beams.setdefault((kind, echo), []).append(
+                range_beam(reading if echo else longest, pose, mounts[kind][index]))
+    return beams
+
+
+def _clip_to(beam: NDArray[np.float64], box: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Return ``beam`` (2, 2) ended where it leaves ``box`` ((x0, y0), (x1, y1)), if sooner."""
+    start, end = beam
+    (x0, y0), (x1, y1) = box
+    step = end - start
+    fraction = 1.0
+    for axis, (low, high) in enumerate(((x0, x1), (y0, y1))):
+        if step[axis] > 0.0:
+            fraction = min(fraction, (high - start[axis]) / step[axis])
+        elif step[axis] < 0.0:
+            fraction = min(fraction, (low - start[axis]) / step[axis])
+    return np.array([start, start + max(fraction, 0.0) * step])
+
+
+def _draw_readings(ax: 'Axes', run: RunSeries, truth: Series, every: float) -> str:
+    """Draw the range readings every ``every`` [s] in the map frame; the caption's sentence."""
+    marks = np.arange(truth.t[0], truth.t[-1] + 1e-9 * max(1.0, abs(truth.t[-1])), every)
+    points, count = _laser_snapshots(run, truth, marks, sensor_mounts(run.scenario, 'laser'))
+    parts = []
+    if count:
+        ax.plot(points[:, 0], points[:, 1], '.', color='C4', alpha=0.6, markersize=4.0,
+                markeredgewidth=0.0, zorder=1.3, label=f'laser returns every {every:g} s')
+        parts.append(f'the returns of the /scan nearest each time ({count} scans, '
+                     f'{len(points)} points; +-inf, NaN and out-of-range readings, REP-117, '
+                     'not drawn)')
+    beams = _range_snapshots(run, truth, marks, min(RANGE_TOLERANCE, every / 2.0))
+    # No-echo beams end at the edge of what is drawn so far (the world, the trajectories, the
+    # laser returns), with a margin: max_range (10.7 m for a sonar) would dwarf the world.
+    box = ax.dataLim.get_points()
+    box += np.array([[-1.0], [1.0]]) * max(0.05 * float(np.max(box[1] - box[0])), 0.3)
+    for kind, colour in (('sonar', 'C9'), ('infrared', 'C6')):
+        echoes, silent = beams.get((kind, True), []), beams.get((kind, False), [])
+        if not echoes and not silent:
+            continue
+        for drawn, style, label in ((echoes, '-', f'{kind} echoes every {every:g} s'),
+                                    (silent, ':', f'{kind}: no echo')):
+            if drawn:
+                if style == ':' and np.all(np.isfinite(box)):
+                    drawn = [_clip_to(beam, box) for beam in drawn]
+                lines = np.concatenate([np.vstack([b, [np.nan, np.nan]]) for b in drawn])
+                ax.plot(lines[:, 0], lines[:, 1], style, color=colour, alpha=0.7,
+                        linewidth=1.0 if style == '-' else 1.4, zorder=1.3, label=label)
+        parts.append(f'{len(echoes) + len(silent)} {kind} readings as lines from the sensor '
+                     f'along its axis, to the echo (solid; {len(echoes)}) or, for a reading '
+                     f'of max_range (no echo; {len(silent)}), dotted towards max_range')
+    if not parts:
+        return ''
+    return (f' Every {every:g} s, the range readings nearest that time, placed by the sensor '
+            "mounts of the scenario and the true pose at each reading's stamp: "
+            + '; '.join(parts) + '.')
+
+
+def _draw_contacts(ax: 'Axes', run: RunSeries, truth: Optional[Series]) -> str:
+    """Mark where /bumper goes from free to in contact; return the caption's sentence."""
+    bumper = run.bumper
+    if bumper is None or not len(bumper):
+        return ''
+    touching = np.asarray(bumper['in_contact']) > 0.5
+    starts = np.flatnonzero(touching & ~np.concatenate([[False], touching[:-1]]))
+    places = []
+    for k in starts:
+        point = [bumper.columns[c][k] if c in bumper.columns else math.nan for c in 'xy']
+        if not all(math.isfinite(v) for v in point) and truth is not None:
+            pose = _pose_at(truth, float(bumper.t[k]))
+            point = [math.nan, math.nan] if pose is None else list(pose[:2])
+        if all(math.isfinite(v) for v in point):
+            places.append(point)
+    if places:
+        xy = np.array(places)
+        ax.plot(xy[:, 0], xy[:, 1], 'x', color='C3', markersize=10, markeredgewidth=2.5,
+                zorder=5, label=f'contact ({len(starts)})')
+    times = ', '.join(f'{bumper.t[k]:.2f}' for k in starts)
+    return (f' Contacts (/bumper from free to in contact): {len(starts)}'
+            + (f', at t = {times} s, marked by red crosses at the contact point.' if len(starts)
+               else '.'))
+
+
 # --- mobile figures -----------------------------------------------------------------------
 
 def trajectory(fig: 'Figure', run: RunSeries, every: float) -> str:
@@ -190,6 +452,8 @@ def trajectory(fig: 'Figure', run: RunSeries, every: float) -> str:
 
     ax = fig.add_subplot()
     spans = []
+    found = run_world(run)
+    world_text = _draw_world(ax, found) if found is not None else ''
     if run.path is not None and len(run.path):
         ax.plot(run.path[:, 0], run.path[:, 1], '--', color='0.3', linewidth=1.5,
                 label='path (reference)')
@@ -231,10 +495,18 @@ def trajectory(fig: 'Figure', run: RunSeries, every: float) -> str:
     if truth is not None and odom is not None and len(truth) and len(odom):
         final = math.hypot(odom['x'][-1] - truth['x'][-1], odom['y'][-1] - truth['y'][-1])
         caption += f' Final position error of /odom: {final:.3f} m.'
+    title = 'Path, true trajectory and /odom estimate'
+    if found is not None:
+        caption += world_text
+        if truth is not None and len(truth):
+            caption += _draw_readings(ax, run, truth, scan_every(
+                float(truth.t[-1] - truth.t[0]), every))
+        caption += _draw_contacts(ax, run, truth)
+        title += ' in the world'
     ax.set_aspect('equal', adjustable='datalim')
     ax.set_xlabel('x [m]')
     ax.set_ylabel('y [m]')
-    ax.set_title('Path, true trajectory and /odom estimate')
+    ax.set_title(title)
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize='small', loc='best')
     return caption

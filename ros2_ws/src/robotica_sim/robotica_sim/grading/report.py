@@ -9,7 +9,9 @@ renderer, 8 x 5 in at 100 dpi) and writes an ``index.html`` (:func:`render_html`
 them with their captions, beside the scenario, the simulator's status and the bag's topics. A
 figure is drawn only when the bag holds the topics it needs:
 
-* mobile robot: ``trajectory`` (/ground_truth/odom, /odom or /path), ``tracking_errors``
+* mobile robot: ``trajectory`` (/ground_truth/odom, /odom or /path; in a run with a world,
+  the scenario's ``world:`` section or /map, also the world, the readings of /scan,
+  /sonar_<i> and /infrared_<i> at intervals and the contacts of /bumper), ``tracking_errors``
   (/ground_truth/odom and /path, or /path_tracker/tracking_error), ``commands`` (/cmd_vel or
   /vehicle_command); with the ground truth also ``estimation`` (/odom), ``gyro``
   (/imu/data), ``compass`` (/compass/heading) and ``gps`` (/gps/fix, in the ENU frame of the
@@ -26,7 +28,7 @@ from typing import Callable, Optional, TYPE_CHECKING
 
 from robotica_sim.grading import figures
 from robotica_sim.grading.metrics import MetricParams
-from robotica_sim.grading.series import gps_origin, RunSeries
+from robotica_sim.grading.series import gps_origin, run_world, RunSeries
 
 if TYPE_CHECKING:   # Matplotlib is imported lazily, when figures are drawn
     from matplotlib.figure import Figure
@@ -238,8 +240,9 @@ def _plans(run: RunSeries, every: float) -> list[_Plan]:
                                lambda fig: figures.joint_errors(fig, run, controller)))
         return plans
     if truth is not None or odom is not None or run.path is not None:
-        plans.append(_Plan('trajectory', 'Trajectory in the x-y plane',
-                           lambda fig: figures.trajectory(fig, run, every)))
+        title = ('Trajectory in the world' if run_world(run) is not None
+                 else 'Trajectory in the x-y plane')
+        plans.append(_Plan('trajectory', title, lambda fig: figures.trajectory(fig, run, every)))
     if (truth is not None and run.path is not None and len(run.path) >= 2
             or run.tracking_error is not None):
         window = MetricParams().search_window   # as `robotica grade` without a rubric

@@ -18,22 +18,35 @@ headings are REP-103 (x forward, y left, θ from the x axis, counter-clockwise);
 GPS fixes stay geodetic in their series; :func:`fixes_to_enu` turns them into the world's local
 ENU frame at :func:`gps_origin`, the scenario's ``sensors.gps.origin`` (the GPS emulator's
 origin, REP-103/105: x east, y north).
+
+A run with a world (docs/world.md) also has its range sensors: the laser's ``/scan``, of which
+at most :data:`MAX_SCANS` scans evenly spaced over the run are kept (a figure draws a few; an
+hour of scans is not held in memory), and every reading of ``/sonar_<i>`` and
+``/infrared_<i>``; the world's grid ``/map``; and the contacts of ``/bumper``.
+:func:`run_world` builds the world to draw from the scenario's ``world:`` section (else
+``/map``), :func:`sensor_mounts` gives each range topic's mount in ``base_link``.
 """
 from dataclasses import dataclass, field
 import math
 from operator import attrgetter
 from pathlib import Path
+import re
 from typing import Any, Callable, Iterable
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from robotica_ctrl.trajectory.sampled_trajectory import trajectory_from_points
 from robotica_kin.geodetic import GeodeticOrigin
+from robotica_kin.world.errors import WorldError
+from robotica_kin.world.occupancy_grid import OccupancyGrid
+from robotica_kin.world.shapes import World
+from robotica_kin.world.world_section import world_from_mapping
 from robotica_sim.bags.info import BagError, open_bag
 from robotica_sim.bags.run_record import custom_data, run_record, RunRecord
 
-__all__ = ['MSGTYPES', 'RunSeries', 'Series', 'TOPICS', 'fixes_to_enu', 'gps_origin',
-           'load_run']
+__all__ = ['MAX_SCANS', 'MSGTYPES', 'RANGE_MSGTYPE', 'RANGE_TOPIC', 'RunSeries', 'RunWorld',
+           'Series', 'TOPICS', 'fixes_to_enu', 'gps_origin', 'load_run', 'run_world',
+           'sensor_mounts']
 
 TOPICS = {
     'clock': '/clock',
@@ -52,6 +65,8 @@ TOPICS = {
     'torques': '/joint_torques',
     'status': '/simulator/status',
     'bumper': '/bumper',
+    'scan': '/scan',
+    'map': '/map',
 }
 """The topics :func:`load_run` reads, by the role they play in a run."""
 
@@ -72,8 +87,18 @@ MSGTYPES = {
     'torques': 'std_msgs/msg/Float64MultiArray',
     'status': 'robotica_msgs/msg/SimulatorStatus',
     'bumper': 'robotica_msgs/msg/Contact',
+    'scan': 'sensor_msgs/msg/LaserScan',
+    'map': 'nav_msgs/msg/OccupancyGrid',
 }
 """The message type each role's topic must have; a topic of another type is ignored."""
+
+RANGE_TOPIC = re.compile(r'/(sonar|infrared)_(\d+)')
+"""The topics of the sonar ring and the infrared sensors (full match): kind and index i."""
+RANGE_MSGTYPE = 'sensor_msgs/msg/Range'
+
+MAX_SCANS = 256
+"""At most this many laser scans are kept, evenly spaced over the run (by arrival): 256 of
+361 beams are 0.7 MB, whether the run lasted 40 s or an hour."""
 
 
 @dataclass(frozen=True)
@@ -130,7 +155,16 @@ class RunSeries:
       ``reference``: ``position``, ``velocity`` (n, joints), the reference
       (``/joint_controller/joint_trajectory``) at the times of ``joint_states``: what the
       grading compares the simulator's joints with; ``torques``: ``effort`` (n, joints).
-    - ``bumper`` (``/bumper``, a simulator with a world): ``in_contact`` (1.0 or 0.0) each step.
+    - ``bumper`` (``/bumper``, a simulator with a world): ``in_contact`` (1.0 or 0.0) each
+      step, ``x``, ``y`` [m] the contact point on the obstacle, world frame (NaN when free).
+    - ``scans`` (``/scan``, sensor_msgs/LaserScan in the laser's frame): ``ranges`` (n, beams)
+      [m] as published (REP-117: +-inf and NaN kept; a scan with fewer beams padded with NaN),
+      ``angle_min``, ``angle_increment`` [rad], ``range_min``, ``range_max`` [m]; at most
+      :data:`MAX_SCANS` scans, evenly spaced over the run.
+    - ``ranges``: each ``/sonar_<i>`` and ``/infrared_<i>`` topic (sensor_msgs/Range) by name:
+      ``range``, ``min_range``, ``max_range`` [m], every reading.
+    - ``map_grid``: the last ``/map`` (nav_msgs/OccupancyGrid, latched) as an
+      :class:`~robotica_kin.world.occupancy_grid.OccupancyGrid`.
     """
 
     bag: Path
@@ -155,6 +189,9 @@ class RunSeries:
     ignored: dict[str, str] = field(default_factory=dict)   # known topic of another type: why
     run: RunRecord = field(default_factory=RunRecord)       # the run's settings and nodes
     bumper: Series | None = None        # the simulator's contacts with the world
+    scans: Series | None = None         # /scan, subsampled to at most MAX_SCANS
+    ranges: dict[str, Series] = field(default_factory=dict)   # /sonar_<i>, /infrared_<i>
+    map_grid: OccupancyGrid | None = None   # the last /map
 
     @property
     def is_manipulator(self) -> bool:
@@ -217,7 +254,11 @@ def _compass(msg: Any) -> tuple[float, ...]:
 
 
 def _bumper(msg: Any) -> tuple[float, ...]:
-    return _stamp(msg), float(msg.in_contact)
+    return _stamp(msg), float(msg.in_contact), msg.point.x, msg.point.y
+
+
+def _range(msg: Any) -> tuple[float, ...]:
+    return _stamp(msg), msg.range, msg.min_range, msg.max_range
 
 
 def _gps(msg: Any) -> tuple[float, ...]:
@@ -236,8 +277,10 @@ _SCALAR: dict[str, tuple[tuple[str, ...], Callable[[Any], tuple[float, ...]]]] =
     'imu': (('wz',), _imu),
     'compass': (('theta', 'var_theta'), _compass),
     'gps': (('latitude', 'longitude', 'altitude', 'var_e', 'var_n'), _gps),
-    'bumper': (('in_contact',), _bumper),
+    'bumper': (('in_contact', 'x', 'y'), _bumper),
 }
+_RANGE_COLUMNS = ('range', 'min_range', 'max_range')
+_NAN_ALLOWED = {'bumper': ('x', 'y')}   # NaN when the robot is free
 
 # Joint series: topic role -> (column -> message field).
 _JOINT_FIELDS = {
@@ -274,7 +317,8 @@ def _check_values(path: Path, series: dict[str, 'Series | None'],
             continue
         # Times are not checked (a wall-clock stamp is 1.7e9 s). A joint series pads a
         # message with fewer joints than the first with NaN.
-        checked += [(TOPICS[role], column, role in _JOINT_FIELDS)
+        checked += [(TOPICS[role], column,
+                     role in _JOINT_FIELDS or name in _NAN_ALLOWED.get(role, ()))
                     for name, column in samples.columns.items() if not name.startswith('var_')]
     if path_points is not None:
         checked.append((TOPICS['path'], path_points, False))
@@ -361,6 +405,28 @@ def _joint_reference(msg: Any, states: Series | None) -> Series | None:
                              'velocity': np.array([s.qd_d for s in samples])}, states.names)
 
 
+def _scan_series(msgs: list[tuple[Any, int]]) -> Series:
+    """Return the scans of sensor_msgs/LaserScan messages (see :class:`RunSeries`)."""
+    stamps = np.array([_stamp(msg) for msg, _ in msgs], dtype=np.float64)
+    receive = np.array([r for _, r in msgs], dtype=np.float64) * 1e-9
+    columns = {name: np.array([getattr(msg, name) for msg, _ in msgs], dtype=np.float64)
+               for name in ('angle_min', 'angle_increment', 'range_min', 'range_max')}
+    columns['ranges'] = _joint_matrix(tuple(np.asarray(msg.ranges, dtype=np.float64)
+                                            for msg, _ in msgs))
+    return Series(*_in_time_order(_times(stamps, receive), columns))
+
+
+def _grid(msg: Any) -> OccupancyGrid | None:
+    """Return a nav_msgs/OccupancyGrid as an OccupancyGrid; None if it is not a valid one."""
+    info = msg.info
+    try:
+        data = np.asarray(msg.data, dtype=np.int8).reshape(info.height, info.width)
+        origin = (info.origin.position.x, info.origin.position.y, _yaw(info.origin.orientation))
+        return OccupancyGrid(data, info.resolution, origin)
+    except (ValueError, WorldError):   # a size that is not width x height, bad cells
+        return None
+
+
 def _path(msg: Any) -> tuple[NDArray[np.float64], NDArray[np.float64] | None]:
     """Return the positions (N, 2) [m] of a nav_msgs/Path and its stamps if increasing."""
     points = np.array([[p.pose.position.x, p.pose.position.y] for p in msg.poses],
@@ -380,7 +446,8 @@ def load_run(bag: str | Path, topics: Iterable[str] | None = None) -> RunSeries:
     bag : str or Path
         The rosbag2 directory (``metadata.yaml`` and its MCAP file).
     topics : iterable of str, optional
-        Topic names among :data:`TOPICS`'s values; the others come back as None.
+        Topic names among :data:`TOPICS`'s values and range topics (:data:`RANGE_TOPIC`);
+        the others come back as None.
 
     Returns
     -------
@@ -398,26 +465,38 @@ def load_run(bag: str | Path, topics: Iterable[str] | None = None) -> RunSeries:
     """
     path = Path(bag)
     roles_by_topic = {topic: role for role, topic in TOPICS.items()}
+    for_ranges: set[str] = set()
     if topics is not None:
         wanted = set(topics)
-        unknown = sorted(wanted - set(roles_by_topic))
+        unknown = sorted(t for t in wanted - set(roles_by_topic)
+                         if not RANGE_TOPIC.fullmatch(t))
         if unknown:
             raise ValueError(f'unknown topics {unknown}; known: {", ".join(TOPICS.values())}')
         wanted.add(TOPICS['clock'])
         roles_by_topic = {t: r for t, r in roles_by_topic.items() if t in wanted}
+        for_ranges = {t for t in wanted if RANGE_TOPIC.fullmatch(t)}
     reader = open_bag(path)
     try:
         # Counted as read, not taken from metadata.yaml (which may not describe the data).
         counts = {c.topic: 0 for c in reader.connections}
         msgtypes = {c.topic: c.msgtype for c in reader.connections}
+        for c in reader.connections:   # /sonar_<i>, /infrared_<i>: every one, or those wanted
+            if RANGE_TOPIC.fullmatch(c.topic) and (topics is None or c.topic in for_ranges):
+                roles_by_topic[c.topic] = 'range'
+        expected = {topic: MSGTYPES.get(role, RANGE_MSGTYPE)
+                    for topic, role in roles_by_topic.items()}
         connections = [c for c in reader.connections if c.topic in roles_by_topic
-                       and c.msgtype == MSGTYPES[roles_by_topic[c.topic]]]
-        ignored = {c.topic: f'it has type {c.msgtype}, not {MSGTYPES[roles_by_topic[c.topic]]}'
+                       and c.msgtype == expected[c.topic]]
+        ignored = {c.topic: f'it has type {c.msgtype}, not {expected[c.topic]}'
                    for c in reader.connections
                    if c.topic in roles_by_topic and c not in connections}
         rows: dict[str, list[tuple[float, ...]]] = {role: [] for role in _SCALAR}
         receive_times: dict[str, list[int]] = {role: [] for role in _SCALAR}
         joint_msgs: dict[str, list[tuple[Any, int]]] = {role: [] for role in _JOINT_FIELDS}
+        range_rows: dict[str, list[tuple[float, ...]]] = {}
+        range_receive: dict[str, list[int]] = {}
+        kept_scans: list[tuple[Any, bytes, int]] = []   # every stride-th scan, in arrival
+        scans_seen, stride = 0, 1
         last: dict[str, tuple[Any, bytes]] = {}
         decoded_ids = {c.id for c in connections}
         for connection, receive, raw in reader.messages():
@@ -425,17 +504,29 @@ def load_run(bag: str | Path, topics: Iterable[str] | None = None) -> RunSeries:
             if connection.id not in decoded_ids:
                 continue
             role = roles_by_topic[connection.topic]
-            if role in ('clock', 'status', 'path', 'trajectory'):   # only the last matters
+            if role in ('clock', 'status', 'path', 'trajectory', 'map'):   # the last matters
                 last[role] = (connection, raw)
                 continue
+            if role == 'scan':   # keep every stride-th; past MAX_SCANS, every other one
+                if scans_seen % stride == 0:
+                    kept_scans.append((connection, raw, receive))
+                    if len(kept_scans) > MAX_SCANS:
+                        kept_scans, stride = kept_scans[::2], 2 * stride
+                scans_seen += 1
+                continue
             msg = reader.deserialize(raw, connection.msgtype)
-            if role in _SCALAR:
+            if role == 'range':
+                range_rows.setdefault(connection.topic, []).append(_range(msg))
+                range_receive.setdefault(connection.topic, []).append(receive)
+            elif role in _SCALAR:
                 rows[role].append(_SCALAR[role][1](msg))
                 receive_times[role].append(receive)
             else:
                 joint_msgs[role].append((msg, receive))
         decoded: dict[str, Any] = {role: reader.deserialize(raw, c.msgtype)
                                    for role, (c, raw) in last.items()}
+        scan_msgs = [(reader.deserialize(raw, c.msgtype), receive)
+                     for c, raw, receive in kept_scans]
     except Exception as err:   # rosbags raises its own errors, struct and decoding errors
         raise BagError(f'{path}: cannot read the bag: {err}') from None
     finally:
@@ -469,7 +560,16 @@ def load_run(bag: str | Path, topics: Iterable[str] | None = None) -> RunSeries:
         gps=series['gps'], joint_states=joints['joint_states'], controller=joints['controller'],
         reference=_joint_reference(decoded.get('trajectory'), joints['joint_states']),
         torques=joints['torques'], status=status, msgtypes=msgtypes, ignored=ignored,
-        bumper=series['bumper'])
+        bumper=series['bumper'], scans=_scan_series(scan_msgs) if scan_msgs else None,
+        ranges={topic: _scalar_series(rows, range_receive[topic], _RANGE_COLUMNS)
+                for topic, rows in sorted(range_rows.items(), key=lambda i: _range_key(i[0]))},
+        map_grid=_grid(decoded['map']) if 'map' in decoded else None)
+
+
+def _range_key(topic: str) -> tuple[str, int]:
+    """Return (kind, index) of a range topic, to order /sonar_2 before /sonar_10."""
+    match = RANGE_TOPIC.fullmatch(topic)
+    return (match.group(1), int(match.group(2))) if match else (topic, 0)
 
 
 def gps_origin(scenario: dict | None) -> GeodeticOrigin:
@@ -533,3 +633,110 @@ def fixes_to_enu(origin: GeodeticOrigin, latitude: ArrayLike, longitude: ArrayLi
     if valid.any():
         enu[valid] = np.reshape(origin.geodetic_to_enu(*fixes[valid].T), (-1, 3))
     return enu
+
+
+@dataclass(frozen=True)
+class RunWorld:
+    """The world of a run, to draw: its obstacles and what could not be drawn (``note``)."""
+
+    world: World
+    source: str      # where it comes from: "the scenario's world: section", "/map", ...
+    note: str = ''   # e.g. the scenario's map file could not be loaded, so /map is drawn
+
+
+def run_world(run: RunSeries) -> RunWorld | None:
+    """
+    Return the world the run ran in, or None for a run without one.
+
+    The scenario's ``world:`` section
+    (:func:`robotica_kin.world.world_section.world_from_mapping`). Its ``map:`` file is
+    relative to the scenario's folder, which the bag does not record: it is looked for beside
+    the bag and in the bag's parent folder (``runs/<run>/``). When it is not
+    found (or not valid), the grid the run published on ``/map`` takes its place, or, without
+    one, only the geometric obstacles are drawn; ``note`` says so. A run whose scenario has no
+    world but whose bag has ``/map`` gets that grid. Never raises for a bad world: the note says
+    why nothing is drawn.
+
+    >>> run = RunSeries(Path('b'), {'world': {'walls': [[0, 0, 1, 0]]}}, 0.0, {}, *[None] * 13)
+    >>> run_world(run).world.walls.tolist()
+    [[0.0, 0.0, 1.0, 0.0]]
+
+    """
+    section = (run.scenario or {}).get('world')
+    if section is None:
+        if run.map_grid is None:
+            return None
+        return RunWorld(World(grid=run.map_grid), '/map')
+    source = "the scenario's world: section"
+    if not isinstance(section, dict) or 'map' not in section:
+        try:
+            return RunWorld(world_from_mapping(section, Path()), source)
+        except WorldError as err:
+            return _bad_world(run, str(err))
+    errors = []
+    for folder in (run.bag.parent, run.bag.parent.parent):
+        try:
+            return RunWorld(world_from_mapping(section, folder), source)
+        except WorldError as err:
+            errors.append(str(err))
+    geometry = {key: value for key, value in section.items() if key != 'map'}
+    try:
+        world = world_from_mapping(geometry, Path())
+    except WorldError as err:
+        return _bad_world(run, str(err))
+    missing = f'the map file {section["map"]!r} could not be loaded ({errors[0]})'
+    if run.map_grid is not None:
+        return RunWorld(World(walls=world.walls, circles=world.circles,
+                              polygons=world.polygons, grid=run.map_grid),
+                        f'{source} and /map', f'{missing}; its grid is the one the run '
+                        'published on /map')
+    return RunWorld(world, source, f'{missing} and the bag has no /map: only the walls, '
+                    'polygons and circles are drawn')
+
+
+def _bad_world(run: RunSeries, error: str) -> RunWorld | None:
+    """Return /map as the world when the scenario's world: section is not valid, else None."""
+    if run.map_grid is None:
+        return None
+    return RunWorld(World(grid=run.map_grid), '/map',
+                    f"the scenario's world: section is not valid ({error}); /map is drawn")
+
+
+def sensor_mounts(scenario: dict | None, kind: str) -> NDArray[np.float64]:
+    """
+    Return the mounts (k, 3) (x [m], y [m], yaw [rad] in ``base_link``) of a kind of sensor.
+
+    ``kind`` is ``'laser'`` (``sensors.laser.mount``, default (0, 0, 0)), ``'sonar'`` or
+    ``'infrared'`` (``sensors.<kind>.mounts``, default
+    :data:`robotica_sim.sensors.sonar.SONAR_MOUNTS`,
+    :data:`robotica_sim.sensors.infrared.INFRARED_MOUNTS`): row i is the sensor of topic
+    ``/<kind>_<i>`` (the laser's ``/scan``). Mounts that are not numbers in triples give (0, 3).
+
+    >>> sensor_mounts({'sensors': {'sonar': {'mounts': [0.2, 0.0, 0.0]}}}, 'sonar').tolist()
+    [[0.2, 0.0, 0.0]]
+    >>> sensor_mounts(None, 'laser').tolist()
+    [[0.0, 0.0, 0.0]]
+
+    """
+    sensors = (scenario or {}).get('sensors')
+    spec = sensors.get(kind) if isinstance(sensors, dict) else None
+    key = 'mount' if kind == 'laser' else 'mounts'
+    mounts = spec.get(key) if isinstance(spec, dict) else None
+    if mounts is None:
+        if kind == 'laser':
+            mounts = (0.0, 0.0, 0.0)
+        elif kind == 'sonar':
+            from robotica_sim.sensors.sonar import SONAR_MOUNTS
+            mounts = SONAR_MOUNTS
+        elif kind == 'infrared':
+            from robotica_sim.sensors.infrared import INFRARED_MOUNTS
+            mounts = INFRARED_MOUNTS
+        else:
+            raise ValueError(f"kind must be 'laser', 'sonar' or 'infrared', got {kind!r}")
+    try:
+        values = np.asarray(mounts, dtype=np.float64).ravel()
+    except (TypeError, ValueError):
+        return np.zeros((0, 3))
+    if values.size % 3 or not np.all(np.isfinite(values)):
+        return np.zeros((0, 3))
+    return values.reshape(-1, 3)

@@ -8,6 +8,7 @@ drawn here from a seeded generator, so that the bias and σ each caption prints 
 against the noise itself. The images themselves are checked by test_report.py, through
 ``robotica report``.
 """
+from dataclasses import replace
 import math
 from pathlib import Path
 import re
@@ -16,6 +17,7 @@ from matplotlib.figure import Figure
 import numpy as np
 import pytest
 from robotica_kin.geodetic import GeodeticOrigin
+from robotica_kin.world.occupancy_grid import OccupancyGrid
 from robotica_sim.grading import figures
 from robotica_sim.grading.series import RunSeries, Series
 
@@ -233,3 +235,137 @@ def test_sweep_metric_draws_each_run_and_the_mean_per_value():
     words = figures.sweep_metric(Figure(), 'tracker.law', [('stanley', '', 1.0),
                                                            ('pure_pursuit', '', 2.0)], 'x', '')
     assert 'stanley: 1; pure_pursuit: 2' in words   # categories in their first order
+
+
+# --- the world, the range readings and the contacts ---------------------------------------
+
+WORLD = {'walls': [[0.0, -1.0, 4.0, -1.0], [4.0, -1.0, 4.0, 3.0]],
+         'boxes': [{'center': [2.0, 4.0], 'size': [1.0, 0.5]}],   # axis-aligned
+         'circles': [[-1.0, 2.0, 0.3]]}
+POSE = (1.0, 2.0, math.pi / 2.0)   # [m, m, rad] the robot stands still, facing +y
+
+
+def still_truth():
+    return poses(T, np.full_like(T, POSE[0]), np.full_like(T, POSE[1]),
+                 np.full_like(T, POSE[2]))
+
+
+def world_run(scenario=None, **fields):
+    """A run of the still robot; ``scenario`` None: no world."""
+    return replace(make_run(path=[[0.0, 0.0], [1.0, 2.0]], scenario=scenario,
+                            truth=still_truth()), **fields)
+
+
+def draw_axes(run, every=2.0):
+    fig = Figure(figsize=figures.FIGURE_SIZE, dpi=figures.DPI)
+    text = figures.trajectory(fig, run, every)
+    (ax,) = fig.axes
+    return ax, text
+
+
+def line(ax, label):
+    (found,) = [ln for ln in ax.lines if ln.get_label() == label]
+    return np.column_stack([found.get_xdata(), found.get_ydata()]).astype(float)
+
+
+def pieces(xy):
+    """Split a NaN-separated polyline into its pieces (k, 2) each."""
+    breaks = np.flatnonzero(np.isnan(xy[:, 0]))
+    parts = [part[~np.isnan(part[:, 0])] for part in np.split(xy, breaks)]
+    return [part for part in parts if len(part)]
+
+
+def test_the_world_is_drawn_at_its_coordinates_under_the_trajectories():
+    ax, text = draw_axes(world_run({'world': WORLD}))
+    segments = {tuple(np.round(p.ravel(), 9)) for p in pieces(line(ax, 'walls and obstacles'))}
+    box = [(1.5, 3.75), (2.5, 3.75), (2.5, 4.25), (1.5, 4.25)]
+    expected = {(0.0, -1.0, 4.0, -1.0), (4.0, -1.0, 4.0, 3.0)} | {
+        (*box[k], *box[(k + 1) % 4]) for k in range(4)}
+    assert len(segments) == 6
+    for segment in expected:   # each edge, in either direction
+        reverse = segment[2:] + segment[:2]
+        assert segment in segments or reverse in segments
+    (circle,) = [p for p in ax.patches if type(p).__name__ == 'Circle']
+    assert circle.center == pytest.approx((-1.0, 2.0)) and circle.radius == pytest.approx(0.3)
+    world = [ln for ln in ax.lines if ln.get_label() == 'walls and obstacles'][0]
+    truth = [ln for ln in ax.lines if ln.get_label() == 'true trajectory'][0]
+    assert world.get_zorder() < truth.get_zorder() and circle.get_zorder() < truth.get_zorder()
+    assert "The world (the scenario's world: section)" in text
+    assert ax.get_title().endswith('in the world')
+
+
+def test_laser_returns_are_placed_by_the_mount_and_the_true_pose():
+    # Sensor at (1, 2) + R(π/2) (0.1, 0) = (1, 2.1), facing +y. Beams at -π/2, -π/4, 0, π/4,
+    # π/2 in its frame: 1 m at -π/2 (map angle 0) -> (2, 2.1); 2 m at π/4 (map 3π/4) ->
+    # (1 - √2, 2.1 + √2); +inf, NaN and -inf are not returns (REP-117), 9 m exceeds range_max.
+    ranges = np.array([[1.0, np.inf, np.nan, 2.0, -np.inf, 9.0]])
+    scans = series([5.0], angle_min=[-math.pi / 2.0], angle_increment=[math.pi / 4.0],
+                   range_min=[0.1], range_max=[8.0])
+    scans.columns['ranges'] = ranges
+    scenario = {'world': WORLD, 'sensors': {'laser': {'mount': [0.1, 0.0, 0.0]}}}
+    ax, text = draw_axes(world_run(scenario, scans=scans))
+    root = math.sqrt(2.0)
+    np.testing.assert_allclose(line(ax, 'laser returns every 2 s'),
+                               [[2.0, 2.1], [1.0 - root, 2.1 + root]], atol=1e-12)
+    assert '1 scans, 2 points' in text
+
+
+def test_range_readings_are_beams_along_the_sensor_axis():
+    # Sonar 0 at (0.2, 0, 0) in base_link: (1, 2.2) facing +y; its 0.5 m echo ends at (1, 2.7).
+    # Sonar 1 at (0, 0.2, π/2): (0.8, 2) facing -x; its reading 10.7 m is max_range (no echo),
+    # drawn dotted to the edge of what is drawn (the world reaches x = -1.3, plus a margin).
+    readings = {f'/sonar_{i}': series([5.0], range=[r], min_range=[0.15], max_range=[10.7])
+                for i, r in enumerate((0.5, 10.7))}
+    scenario = {'world': WORLD,
+                'sensors': {'sonar': {'mounts': [0.2, 0.0, 0.0, 0.0, 0.2, math.pi / 2.0]}}}
+    ax, text = draw_axes(world_run(scenario, ranges=readings))
+    (echo,) = pieces(line(ax, 'sonar echoes every 2 s'))   # one reading: drawn once
+    np.testing.assert_allclose(echo, [[1.0, 2.2], [1.0, 2.7]], atol=1e-12)
+    (silent,) = pieces(line(ax, 'sonar: no echo'))
+    np.testing.assert_allclose(silent[0], [0.8, 2.0], atol=1e-12)
+    assert silent[1, 1] == pytest.approx(2.0) and -2.0 < silent[1, 0] < -1.3
+    assert '2 sonar readings' in text
+
+
+def test_contacts_are_marked_where_the_bumper_starts_touching():
+    # Two contacts: at t = 1 s without a contact point (the true position is used), at
+    # t = 3 s at the point (3, 4); t = 2 s continues the first.
+    t = np.array([0.0, 1.0, 2.0, 2.5, 3.0, 4.0])
+    bumper = series(t, in_contact=[0, 1, 1, 0, 1, 0],
+                    x=[np.nan, np.nan, 0.0, np.nan, 3.0, np.nan],
+                    y=[np.nan, np.nan, 0.0, np.nan, 4.0, np.nan])
+    ax, text = draw_axes(world_run({'world': WORLD}, bumper=bumper))
+    np.testing.assert_allclose(line(ax, 'contact (2)'), [POSE[:2], [3.0, 4.0]])
+    assert 'Contacts (/bumper from free to in contact): 2, at t = 1.00, 3.00 s' in text
+
+
+def test_a_run_without_a_world_is_drawn_as_before():
+    # The scans, readings and contacts of a run are drawn only with its world.
+    scans = series([5.0], angle_min=[0.0], angle_increment=[0.1], range_min=[0.1],
+                   range_max=[8.0])
+    scans.columns['ranges'] = np.array([[1.0, 2.0]])
+    run = world_run(None, scans=scans, bumper=series(T, in_contact=np.ones_like(T)))
+    ax, text = draw_axes(run)
+    assert [t.get_text() for t in ax.get_legend().get_texts()] == [
+        'path (reference)', 'true trajectory', 'robot every 2 s', 'start']
+    assert len(ax.lines) == 3 and not ax.images and len(ax.patches) == 6   # 6 robots
+    assert ax.get_title() == 'Path, true trajectory and /odom estimate'
+    assert 'world' not in text and 'Contacts' not in text
+
+
+def grid_of(cells, resolution=0.5, origin=(-1.0, -1.0, 0.0)):
+    return OccupancyGrid(np.asarray(cells, dtype=np.int8), resolution, origin)
+
+
+def test_an_unloadable_map_file_falls_back_to_map_then_to_the_geometry():
+    scenario = {'world': {'map': 'no_such_map.yaml', 'walls': [[0.0, -1.0, 4.0, -1.0]]}}
+    grid = grid_of([[0, 100], [-1, 0]])
+    ax, text = draw_axes(world_run(scenario, map_grid=grid))
+    (image,) = ax.images
+    assert image.get_extent() == pytest.approx([0.0, 1.0, 0.0, 1.0])   # in the grid frame
+    rgba = image.get_array()
+    assert rgba[0, 1, 3] > 0.5 and rgba[0, 0, 3] == 0.0   # occupied drawn, free transparent
+    assert "'no_such_map.yaml' could not be loaded" in text and 'published on /map' in text
+    assert pieces(line(ax, 'walls and obstacles'))[0].tolist() == [[0.0, -1.0], [4.0, -1.0]]
+    ax, text = draw_axes(world_run(scenario))
+    assert not ax.images and 'only the walls, polygons and circles are drawn' in text
