@@ -62,7 +62,7 @@ ROBOT_SIZE = 0.035            # length of the robot's triangle / larger span of 
 SCAN_MARKS = 10              # range readings drawn at about this many times over a run
 SCAN_MARKS_MAX = 12          # ... at the robot's times when they are at most this many
 RANGE_TOLERANCE = 1.0        # [s] a Range reading is drawn within this of its time
-WORLD_COLOUR = '0.2'
+WORLD_COLOUR = '0.3'
 GRID_RGBA = (0.45, 0.45, 0.45, 0.85)      # occupied cells
 UNKNOWN_RGBA = (0.8, 0.8, 0.8, 0.35)      # unknown cells
 HISTOGRAM_BINS = 40
@@ -382,7 +382,7 @@ def _draw_readings(ax: 'Axes', run: RunSeries, truth: Series, every: float) -> s
     points, count = _laser_snapshots(run, truth, marks, sensor_mounts(run.scenario, 'laser'))
     parts = []
     if count:
-        ax.plot(points[:, 0], points[:, 1], '.', color='C4', alpha=0.6, markersize=4.0,
+        ax.plot(points[:, 0], points[:, 1], '.', color='C4', alpha=0.8, markersize=5.0,
                 markeredgewidth=0.0, zorder=1.3, label=f'laser returns every {every:g} s')
         parts.append(f'the returns of the /scan nearest each time ({count} scans, '
                      f'{len(points)} points; +-inf, NaN and out-of-range readings, REP-117, '

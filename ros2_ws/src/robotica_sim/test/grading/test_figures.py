@@ -251,7 +251,7 @@ def still_truth():
 
 
 def world_run(scenario=None, **fields):
-    """A run of the still robot; ``scenario`` None: no world."""
+    """Return a run of the still robot; ``scenario`` None: no world."""
     return replace(make_run(path=[[0.0, 0.0], [1.0, 2.0]], scenario=scenario,
                             truth=still_truth()), **fields)
 
@@ -269,7 +269,7 @@ def line(ax, label):
 
 
 def pieces(xy):
-    """Split a NaN-separated polyline into its pieces (k, 2) each."""
+    """Return the pieces, (k, 2) each, of a polyline whose pieces are separated by NaN."""
     breaks = np.flatnonzero(np.isnan(xy[:, 0]))
     parts = [part[~np.isnan(part[:, 0])] for part in np.split(xy, breaks)]
     return [part for part in parts if len(part)]

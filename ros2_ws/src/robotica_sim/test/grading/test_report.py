@@ -433,3 +433,69 @@ def test_cli_unwritable_output_exits_2(tmp_path, capsys):
 def test_cli_robot_every_must_be_positive(tmp_path, capsys):
     assert run_cli(tmp_path / 'bag', '--robot-every', '0') == 2
     assert '--robot-every' in one_line_error(capsys)
+
+
+# --- a run with a world -------------------------------------------------------------------
+
+WORLD_SCENARIO = """name: world_test
+robot:
+  type: differential
+world:
+  walls: [[-3.0, -1.0, 3.0, -1.0], [3.0, -1.0, 3.0, 3.0]]
+  circles: [[0.0, 1.0, 0.3]]
+sensors:
+  laser: {enabled: true, mount: [0.1, 0.0, 0.0]}
+"""
+
+
+def write_world_bag(path):
+    """Write a run along y = 0 at 0.2 m/s for 10 s; the laser sees the wall at y = -1."""
+    bag = BagBuilder(path, WORLD_SCENARIO)
+    store = bag.store
+    ensure_type(store, 'robotica_msgs/msg/Contact')
+    t = np.arange(round(DURATION * RATE) + 1) / RATE
+    x = -2.0 + 0.2 * t
+    angles = np.linspace(-math.pi / 2.0, 0.0, 7)
+    for k, tk in enumerate(t):
+        tk = float(tk)
+        bag.clock(tk)
+        bag.write('/ground_truth/odom', 'nav_msgs/msg/Odometry', tk,
+                  _odometry(store, tk, x[k], 0.0, 0.0, 0.2, 0.0))
+        touching = tk >= 9.0
+        bag.write('/bumper', 'robotica_msgs/msg/Contact', tk, _message(
+            store, 'robotica_msgs/msg/Contact', header=_header(store, tk, 'map'),
+            in_contact=touching, point=_message(store, 'geometry_msgs/msg/Point',
+                                                x=x[k] if touching else math.nan,
+                                                y=-1.0 if touching else math.nan)))
+        if k % 2 == 0:   # 10 Hz: beams down to the wall y = -1, 1 m below the laser
+            down = np.sin(angles) < -0.2
+            ranges = np.full(angles.shape, np.inf)
+            ranges[down] = -1.0 / np.sin(angles[down])
+            bag.write('/scan', 'sensor_msgs/msg/LaserScan', tk, _message(
+                store, 'sensor_msgs/msg/LaserScan', header=_header(store, tk, 'laser_link'),
+                angle_min=-math.pi / 2.0, angle_max=0.0, angle_increment=math.pi / 12.0,
+                range_min=0.1, range_max=8.0, ranges=ranges.astype(np.float32)))
+    bag.close()
+
+
+def test_world_report_draws_the_world_the_scans_and_the_contact(tmp_path):
+    write_world_bag(tmp_path / 'bag')
+    run = load_run(tmp_path / 'bag')
+    report = write_report(run, tmp_path / 'out', robot_every=2.0)
+    (figure,) = [f for f in report.figures if f.path.stem == 'trajectory']
+    assert figure.title == 'Trajectory in the world'
+    image = imread(figure.path)[..., :3]
+    assert image.shape == (500, 800, 3)
+    red = np.all(np.abs(image - (0.839, 0.153, 0.157)) < 0.05, axis=2)   # C3: the contact
+    assert np.count_nonzero(red) > 20
+    assert "The world (the scenario's world: section)" in figure.caption
+    assert numbers_after(figure.caption, 'returns of the /scan nearest each time (')[0] == 6
+    assert 'Contacts (/bumper from free to in contact): 1, at t = 9.00 s' in figure.caption
+    page = (tmp_path / 'out' / 'index.html').read_text(encoding='utf-8')
+    assert 'Trajectory in the world' in page and html.escape(figure.caption) in page
+
+
+def test_a_report_without_a_world_titles_the_trajectory_as_before(mobile):
+    _, report, _ = mobile
+    (figure,) = [f for f in report.figures if f.path.stem == 'trajectory']
+    assert figure.title == 'Trajectory in the x-y plane' and 'world' not in figure.caption

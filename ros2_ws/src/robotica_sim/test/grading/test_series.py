@@ -5,16 +5,24 @@ The reference values are the numbers written into the bag, so every column is ch
 what went in: stamps, positions, the yaw of quaternions built from known angles, covariance
 diagonals, joint arrays (also when a message lists its joints in another order).
 """
+from dataclasses import replace
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
 from robotica_kin.geodetic import GeodeticOrigin
+from robotica_kin.world.map_file import write_map
+from robotica_kin.world.occupancy_grid import OccupancyGrid
 from robotica_sim.bags.info import BagError
 from robotica_sim.bags.typestore import ensure_type, jazzy_typestore
+from robotica_sim.grading import series as series_module
 from robotica_sim.grading.metrics import compute_metrics
-from robotica_sim.grading.series import fixes_to_enu, gps_origin, load_run, Series
+from robotica_sim.grading.series import (fixes_to_enu, gps_origin, load_run, run_world,
+                                         RunSeries, sensor_mounts, Series)
 from robotica_sim.runs.scenario import GpsSpec
+from robotica_sim.sensors.infrared import INFRARED_MOUNTS
+from robotica_sim.sensors.sonar import SONAR_MOUNTS
 from rosbags.rosbag2 import StoragePlugin, Writer
 
 SCENARIO = 'name: synthetic\nseed: 3\narm:\n  model: two_link_arm\n  lengths: [3.0, 1.0]\n'
@@ -298,3 +306,133 @@ def test_fixes_to_enu_against_the_meridian_radius():
     np.testing.assert_allclose(enu[1], [(n + ORIGIN[2]) * math.cos(phi) * step, 0.0, 5.0],
                                atol=2e-3)
     assert np.isnan(enu[2:]).all()   # no fix, and a latitude beyond the pole
+
+
+# --- a run with a world: scans, range readings, the map and the contacts -------------------
+
+def _scan(types, t, ranges):
+    return types['sensor_msgs/msg/LaserScan'](
+        header=_header(types, t, 'laser_link'), angle_min=-1.5, angle_max=1.5,
+        angle_increment=1.5, time_increment=0.0, scan_time=0.1, range_min=0.1, range_max=8.0,
+        ranges=np.asarray(ranges, dtype=np.float32), intensities=np.zeros(0, np.float32))
+
+
+def _range(types, t, reading, frame):
+    return types['sensor_msgs/msg/Range'](
+        header=_header(types, t, frame), radiation_type=0, field_of_view=0.5, min_range=0.15,
+        max_range=10.7, range=reading, variance=0.0)
+
+
+def _contact(types, t, touching, x):
+    point, vec = types['geometry_msgs/msg/Point'], types['geometry_msgs/msg/Vector3']
+    nan = float('nan')
+    return types['robotica_msgs/msg/Contact'](
+        header=_header(types, t, 'map'), in_contact=touching,
+        point=point(x=x if touching else nan, y=0.5 if touching else nan, z=0.0),
+        normal=vec(x=nan, y=nan, z=nan), contacts=int(touching), time_in_contact=0.0)
+
+
+def world_topics(types, scans=20):
+    """Return scans every DT (beam 1: +inf), two sonars, a 2 x 3 map, a bumper from 0.2 s."""
+    pose = types['geometry_msgs/msg/Pose'](
+        position=types['geometry_msgs/msg/Point'](x=-1.0, y=-2.0, z=0.0),
+        orientation=_quaternion(types, 0.5))
+    info = types['nav_msgs/msg/MapMetaData'](
+        map_load_time=_header(types, 0.0).stamp, resolution=0.25, width=3, height=2,
+        origin=pose)
+    grid = types['nav_msgs/msg/OccupancyGrid'](
+        header=_header(types, 0.0, 'map'), info=info,
+        data=np.array([0, 100, -1, 0, 0, 100], dtype=np.int8))
+    times = [k * DT for k in range(N)]
+    return {
+        '/scan': ('sensor_msgs/msg/LaserScan', [
+            (k * DT, _scan(types, k * DT, [1.0 + k, np.inf, np.nan])) for k in range(scans)]),
+        '/sonar_10': ('sensor_msgs/msg/Range', [(t, _range(types, t, 10.7, 's10'))
+                                                for t in times]),
+        '/sonar_2': ('sensor_msgs/msg/Range', [(t, _range(types, t, 0.5 + t, 's2'))
+                                               for t in times]),
+        '/map': ('nav_msgs/msg/OccupancyGrid', [(0.0, grid)]),
+        '/bumper': ('robotica_msgs/msg/Contact', [
+            (t, _contact(types, t, k >= 2, 3.0 + t)) for k, t in enumerate(times)]),
+    }
+
+
+def world_types():
+    store = jazzy_typestore()
+    ensure_type(store, 'robotica_msgs/msg/Contact')
+    return store, _types(store)
+
+
+def test_scans_ranges_map_and_contacts_of_a_run_with_a_world(tmp_path):
+    store, types = world_types()
+    run = load_run(write_bag(tmp_path / 'bag', world_topics(types)))
+    scans = run.scans
+    assert scans.t == pytest.approx(np.arange(20) * DT)
+    assert scans['ranges'].shape == (20, 3) and scans['ranges'][3, 0] == 4.0
+    assert np.isposinf(scans['ranges'][:, 1]).all() and np.isnan(scans['ranges'][:, 2]).all()
+    assert (scans['angle_min'][0], scans['angle_increment'][0]) == (-1.5, 1.5)
+    assert (scans['range_min'][0], scans['range_max'][0]) == pytest.approx((0.1, 8.0))
+    assert list(run.ranges) == ['/sonar_2', '/sonar_10']   # by index, not by name
+    assert run.ranges['/sonar_2']['range'] == pytest.approx(0.5 + np.arange(N) * DT)
+    assert run.ranges['/sonar_10']['max_range'] == pytest.approx(np.full(N, 10.7))
+    grid = run.map_grid
+    assert grid.data.tolist() == [[0, 100, -1], [0, 0, 100]] and grid.resolution == 0.25
+    assert grid.origin == pytest.approx((-1.0, -2.0, 0.5))
+    bumper = run.bumper   # NaN contact points while free are not corrupt values
+    assert bumper['in_contact'].tolist() == [0.0, 0.0, 1.0, 1.0, 1.0]
+    assert bumper['x'][2:] == pytest.approx(3.0 + np.arange(2, N) * DT)
+    assert np.isnan(bumper['x'][:2]).all() and bumper['y'][2] == 0.5
+    assert compute_metrics(run).values['collisions'] == 1
+
+
+def test_scans_are_subsampled_evenly_to_at_most_max_scans(tmp_path, monkeypatch):
+    # With at most 4 kept, 20 scans leave every 8th: 0, 8, 16 (the stride doubles past 4).
+    monkeypatch.setattr(series_module, 'MAX_SCANS', 4)
+    store, types = world_types()
+    run = load_run(write_bag(tmp_path / 'bag', world_topics(types)))
+    assert run.scans.t == pytest.approx([0.0, 0.8, 1.6])
+    assert run.scans['ranges'][:, 0].tolist() == [1.0, 9.0, 17.0]
+    assert run.counts['/scan'] == 20
+
+
+def test_range_topics_can_be_selected(tmp_path):
+    store, types = world_types()
+    bag = write_bag(tmp_path / 'bag', world_topics(types))
+    run = load_run(bag, ['/sonar_2', '/scan'])
+    assert list(run.ranges) == ['/sonar_2'] and run.scans is not None and run.map_grid is None
+    assert load_run(bag, ['/bumper']).ranges == {}
+    with pytest.raises(ValueError, match='/sonar'):
+        load_run(bag, ['/sonar'])
+
+
+def test_run_world_from_the_scenario_or_map():
+    grid = OccupancyGrid(np.zeros((2, 2), np.int8), 0.5)
+    base = RunSeries(Path('runs/x/bag'), None, 0.0, {}, *[None] * 13)
+    assert run_world(base) is None
+    assert run_world(replace(base, map_grid=grid)).world.grid is grid
+    walls = run_world(replace(base, scenario={'world': {'walls': [[0, 0, 1, 0]]}}))
+    assert walls.world.walls.tolist() == [[0.0, 0.0, 1.0, 0.0]] and walls.note == ''
+    assert walls.world.grid is None   # /map is not drawn over a world given by its shapes
+    missing = {'world': {'map': 'gone.yaml', 'circles': [[1, 1, 0.5]]}}
+    found = run_world(replace(base, scenario=missing, map_grid=grid))
+    assert found.world.grid is grid and len(found.world.circles) == 1 and 'gone.yaml' in found.note
+    bad = run_world(replace(base, scenario={'world': {'walls': 'nope'}}, map_grid=grid))
+    assert bad.world.grid is grid and 'not valid' in bad.note
+    assert run_world(replace(base, scenario={'world': {'walls': 'nope'}})) is None
+
+
+def test_run_world_loads_a_map_file_beside_the_bag(tmp_path):
+    write_map(OccupancyGrid(np.full((2, 2), 100, np.int8), 0.5), tmp_path / 'room.yaml')
+    run = RunSeries(tmp_path / 'bag', {'world': {'map': 'room.yaml'}}, 0.0, {}, *[None] * 13)
+    found = run_world(run)
+    assert found.world.grid.occupied.all() and found.note == ''
+
+
+def test_sensor_mounts_of_the_scenario_or_the_defaults():
+    assert sensor_mounts({'sensors': {'laser': {'mount': [0.1, 0.0, 0.2]}}}, 'laser').tolist() \
+        == [[0.1, 0.0, 0.2]]
+    assert sensor_mounts(None, 'sonar').shape == (len(SONAR_MOUNTS) // 3, 3)
+    assert sensor_mounts({}, 'infrared').ravel().tolist() == list(INFRARED_MOUNTS)
+    assert sensor_mounts({'sensors': {'sonar': {'mounts': [1.0, 2.0]}}}, 'sonar').shape == (0, 3)
+    with pytest.raises(ValueError, match='kind'):
+        sensor_mounts(None, 'radar')
