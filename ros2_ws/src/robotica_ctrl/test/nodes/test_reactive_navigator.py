@@ -117,3 +117,21 @@ def test_bad_parameters_exit_2(start_node, args, message, read_output):
     assert proc.wait(timeout=30) == 2
     out = read_output(proc)
     assert message in out and 'Traceback' not in out
+
+
+def test_in_lockstep_a_pose_waits_for_the_scan_due(navigator, publish, spin):
+    # Scans every 0.1 s from t = 0: the pose at 0 waits for the scan of 0, the pose at 0.06
+    # needs none newer (the next is due at 0.1), the pose at 0.1 waits for the scan of 0.1.
+    proc, executor, pose, scan, cmds, states = navigator(
+        '-p', 'wait_for_ranges:=true', '-p', 'laser.period:=0.1')
+    pose.publish(odom(0.0))
+    assert not spin(executor, lambda: cmds, timeout=1.0)    # held: its scan has not come
+    scan.publish(wall_scan(0.0))
+    assert spin(executor, lambda: len(cmds) == 1)
+    assert cmds[-1].angular.z == pytest.approx(0.24, abs=1e-6)   # answered with that scan
+    pose.publish(odom(0.06))
+    assert spin(executor, lambda: len(cmds) == 2)
+    pose.publish(odom(0.1))
+    assert not spin(executor, lambda: len(cmds) == 3, timeout=1.0)
+    scan.publish(wall_scan(0.1))
+    assert spin(executor, lambda: len(cmds) == 3)

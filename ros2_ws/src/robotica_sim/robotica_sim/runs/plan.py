@@ -63,7 +63,9 @@ MAP_TOPIC = '/map'   # the world, drawn by world_publisher (nav_msgs/OccupancyGr
 BUMPER_TOPIC = '/bumper'   # the simulator's contact with the world (robotica_msgs/Contact)
 NAVIGATOR_NODE_KEYS = {'pose_source': 'odom', 'range_timeout': 0.5,
                        'max_unknown_fraction': 0.5, 'laser.pose': (0.0, 0.0, 0.0),
-                       'range.topics': '', 'range.poses': (0.0,)}
+                       'range.topics': '', 'range.poses': (0.0,), 'laser.period': 0.0,
+                       'range.periods': (0.0,), 'range.offsets': (0.0,),
+                       'wait_for_ranges': False}
 """navigator: keys that are the node's own parameters, not the behaviours' (their defaults)."""
 RECORDED_TOPICS = ('/clock', '/cmd_vel', '/odom', '/ground_truth/odom', '/joint_states',
                    '/wheel_encoders', '/path', TRACKING_ERROR_TOPIC, STATUS_TOPIC, '/rosout',
@@ -605,6 +607,35 @@ def _range_topics(scenario: Scenario) -> dict[str, list[tuple[str, tuple[float, 
     return topics
 
 
+def _range_grids(scenario: Scenario) -> tuple[dict[str, float], dict[str, float], list[float]]:
+    """
+    Return each range topic's sample grid: first sample [s], period [s]; and the samplings.
+
+    A laser scans at ``scan_rate`` from the first step; a sonar ring fires one group a cycle at
+    ``cycle_rate``, transducer i in group i mod ``firing_groups``, so each reads every
+    groups / cycle_rate from its group's first cycle; an infrared sensor reads at ``rate``. The
+    third value: each sensor's sampling period (the laser's, the sonar cycle's, the IR's); a
+    grid finer than the step skips samples, and the navigator cannot wait for it.
+    """
+    offsets, periods, samples = {}, {}, []
+    for kind, topics in _range_topics(scenario).items():
+        model = {'laser': laser_params, 'sonar': sonar_params, 'infrared': infrared_params}[kind]
+        values = _range_sensor_parameters(scenario, kind)
+        p = model({k: v for k, v in values.items() if k in RANGE_SENSOR_KEYS[kind][0]})
+        if kind == 'sonar':
+            cycle = 1.0 / p.cycle_rate
+            samples.append(cycle)
+            for i, (topic, _) in enumerate(topics):
+                offsets[topic] = (i % p.firing_groups) * cycle
+                periods[topic] = p.firing_groups * cycle
+        else:
+            period = 1.0 / (p.scan_rate if kind == 'laser' else p.rate)
+            samples.append(period)
+            for topic, _ in topics:
+                offsets[topic], periods[topic] = 0.0, period
+    return offsets, periods, samples
+
+
 def _gyro_parameters(scenario: Scenario) -> dict:
     """Return the gyro emulator's preset and the error terms the scenario gives (not None)."""
     gyro = scenario.sensors.gyro
@@ -734,10 +765,16 @@ def _navigator(scenario: Scenario) -> NodeSpec:
     where = scenario.source or scenario.name
     sensors = _range_topics(scenario)
     ranges = sensors.get('sonar', []) + sensors.get('infrared', [])
+    offsets, periods, samples = _range_grids(scenario)
     params = {'behaviour': scenario.navigator.behaviour,
-              **({'laser.pose': list(sensors['laser'][0][1])} if 'laser' in sensors else {}),
+              **({'laser.pose': list(sensors['laser'][0][1]), 'laser.period': periods['/scan']}
+                 if 'laser' in sensors else {}),
               **({'range.topics': [t.lstrip('/') for t, _ in ranges],
-                  'range.poses': [v for _, mount in ranges for v in mount]} if ranges else {}),
+                  'range.poses': [v for _, mount in ranges for v in mount],
+                  'range.periods': [periods[topic] for topic, _ in ranges],
+                  'range.offsets': [offsets[topic] for topic, _ in ranges]} if ranges else {}),
+              **({'wait_for_ranges': True} if scenario.pacing == 'lockstep' and sensors
+                 and all(p >= scenario.step_period for p in samples) else {}),
               **_flat(scenario.navigator.gains)}
     known = set(NAVIGATOR_PARAMETERS) | set(NAVIGATOR_NODE_KEYS)
     unknown = sorted(set(params) - known)

@@ -4,7 +4,7 @@ import textwrap
 import pytest
 from robotica_sim.runs.plan import MAP_TOPIC, NAVIGATOR_STATE_TOPIC, plan_run, recorded_topics
 from robotica_sim.runs.plan import TRACKING_ERROR_TOPIC
-from robotica_sim.runs.scenario import load_scenario, ScenarioError
+from robotica_sim.runs.scenario import load_scenario, ScenarioError, with_overrides
 
 BASE = """\
 name: corridor
@@ -97,6 +97,12 @@ def test_range_sensors_on_the_world_feed_the_navigator(tmp_path):
     assert navigator['laser.pose'] == [0.1, 0.0, 0.0]
     assert navigator['range.topics'] == ['sonar_0', 'sonar_1']
     assert navigator['range.poses'] == mounts
+    # The laser scans at the preset's 75 Hz, finer than the 50 Hz steps: no waiting possible.
+    assert 'wait_for_ranges' not in navigator and navigator['laser.period'] == 1 / 75
+    # polaroid_6500: 4 groups fired in turn at 20 Hz: each transducer every 0.2 s, from its
+    # group's first cycle (transducer i in group i mod 4).
+    assert navigator['range.periods'] == [0.2, 0.2]
+    assert navigator['range.offsets'] == [0.0, 0.05]
     simulator = nodes['simulator'].parameters
     assert simulator['world_file'] == path and simulator['footprint.radius'] == 0.25
     topics = recorded_topics(loaded)
@@ -121,3 +127,15 @@ def test_bad_sensors_and_poses_are_refused(tmp_path, text, message):
     with pytest.raises(ScenarioError) as err:
         plan_run(load_scenario(path))
     assert message in str(err.value) and '\n' not in str(err.value)
+
+
+def test_a_lockstep_navigator_waits_for_sensors_slower_than_the_steps(tmp_path):
+    path = scenario(tmp_path, WORLD + textwrap.dedent("""\
+        sensors:
+          laser: {enabled: true, scan_rate: 10}
+        navigator: {behaviour: wall_following}
+    """))
+    navigator = by_name(plan_run(load_scenario(path)))['reactive_navigator'].parameters
+    assert navigator['wait_for_ranges'] is True and navigator['laser.period'] == 0.1
+    realtime = by_name(plan_run(with_overrides(load_scenario(path), pacing='realtime')))
+    assert 'wait_for_ranges' not in realtime['reactive_navigator'].parameters
