@@ -7,6 +7,7 @@ with some fields corrupted), bounded in count and wall time. The node must stay 
 nothing non-finite (except the fields its docs declare NaN, "not known"), and answer valid input
 normally afterwards.
 """
+import pathlib
 import random
 import signal
 import time
@@ -26,7 +27,7 @@ from robotica_sim.runs.plan import (ARM_RECORDED_TOPICS, CONTROLLER_STATE_TOPIC,
                                     TRAJECTORY_TOPIC)
 from rosbags.highlevel import AnyReader
 from rosgraph_msgs.msg import Clock
-from sensor_msgs.msg import Imu, JointState, MagneticField, NavSatFix
+from sensor_msgs.msg import Imu, JointState, LaserScan, MagneticField, NavSatFix, Range
 from std_msgs.msg import Float64MultiArray, String
 from tf2_msgs.msg import TFMessage
 from trajectory_msgs.msg import JointTrajectory
@@ -97,6 +98,14 @@ def _reference(t):
     return _stamped(JointControllerState(reference_position=[0.1 * t] * 6), t)
 
 
+ROOM = pathlib.Path(__file__).resolve().parents[2] / 'scenarios' / 'room_laser_vff.yaml'
+"""A closed room (a scenario with a world: section): every beam from inside it meets a wall."""
+
+
+def _in_the_room(t):
+    return _truth(t, v=0.0)   # at (0, 0), inside the room's walls, still
+
+
 def _footprint_at(sec):
     return lambda m: any(marker.ns == 'footprint' and marker.header.stamp.sec >= sec
                          for marker in m.markers)
@@ -145,6 +154,17 @@ CASES = {
          'gps/fix': (NavSatFix, _fix), 'path_tracker/tracking_error': (TrackingError, _target),
          'joint_controller/controller_state': (JointControllerState, _reference)},
         {'markers': (MarkerArray, ())}, 'markers', _footprint_at(100)),
+    'laser_emulator': (['-p', f'world_file:={ROOM}', '-p', 'preset:=sick_lms200'],   # 80 m
+                       {'ground_truth/odom': (Odometry, _in_the_room)},
+                       {'scan': (LaserScan, ('ranges',))}, 'scan',
+                       lambda m: m.header.stamp.sec >= 100),
+    'sonar_emulator': (['-p', f'world_file:={ROOM}', '-p', 'firing_groups:=1'],
+                       {'ground_truth/odom': (Odometry, _in_the_room)},
+                       {'sonar_0': (Range, ())}, 'sonar_0', lambda m: m.header.stamp.sec >= 100),
+    'infrared_emulator': (['-p', f'world_file:={ROOM}'],
+                          {'ground_truth/odom': (Odometry, _in_the_room)},
+                          {'infrared_0': (Range, ())}, 'infrared_0',
+                          lambda m: m.header.stamp.sec >= 100),
 }
 
 NODES = {'simulator_tricycle': 'simulator', 'odometry_gyro': 'odometry'}   # else the case's name
