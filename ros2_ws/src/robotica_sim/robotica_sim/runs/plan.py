@@ -61,6 +61,7 @@ MARKERS_TOPIC = '/markers'   # the markers node's MarkerArray: what a viewer dra
 NAVIGATOR_STATE_TOPIC = '/reactive_navigator/state'   # its behaviour's state (std_msgs/String)
 MAP_TOPIC = '/map'   # the world, drawn by world_publisher (nav_msgs/OccupancyGrid, latched)
 BUMPER_TOPIC = '/bumper'   # the simulator's contact with the world (robotica_msgs/Contact)
+WORLD_MARKERS_TOPIC = '/world_publisher/markers'   # the world's walls and circles, latched
 NAVIGATOR_NODE_KEYS = {'pose_source': 'odom', 'range_timeout': 0.5,
                        'max_unknown_fraction': 0.5, 'laser.pose': (0.0, 0.0, 0.0),
                        'range.topics': '', 'range.poses': (0.0,), 'laser.period': 0.0,
@@ -219,7 +220,7 @@ def recorded_topics(scenario: Scenario) -> tuple[str, ...]:
     if scenario.navigator.behaviour:
         topics[topics.index(TRACKING_ERROR_TOPIC)] = NAVIGATOR_STATE_TOPIC
     if scenario.world:
-        topics += [MAP_TOPIC, BUMPER_TOPIC]
+        topics += [MAP_TOPIC, WORLD_MARKERS_TOPIC, BUMPER_TOPIC]
     for sensor, sensor_topics in SENSOR_TOPICS.items():
         if getattr(scenario.sensors, sensor).enabled:
             topics.extend(sensor_topics)

@@ -8,6 +8,7 @@ centres are at y = 0.25 m (each within half a diagonal of it); the others are fr
 from nav_msgs.msg import OccupancyGrid
 import pytest
 from robotica_kin.ros.qos import LATCHED_QOS
+from visualization_msgs.msg import Marker, MarkerArray
 
 pytestmark = pytest.mark.ros
 
@@ -18,9 +19,14 @@ def test_publishes_the_world_on_map(tmp_path, start_node, ros_node, spin):
     start_node('robotica_sim', 'world_publisher', '-p', f'world_file:={world}',
                '-p', 'resolution:=0.5')
     node, executor = ros_node
-    maps = []
+    maps, markers = [], []
     node.create_subscription(OccupancyGrid, '/map', maps.append, LATCHED_QOS)
-    assert spin(executor, lambda: maps)
+    node.create_subscription(MarkerArray, '/world_publisher/markers', markers.append,
+                             LATCHED_QOS)
+    assert spin(executor, lambda: maps and markers)
+    (walls,) = markers[0].markers
+    assert walls.type == Marker.LINE_LIST and walls.header.frame_id == 'map'
+    assert [(p.x, p.y) for p in walls.points] == [(0.0, 0.2), (1.0, 0.2)]
     grid = maps[0]
     assert grid.header.frame_id == 'map'
     assert (grid.info.width, grid.info.height, grid.info.resolution) == (4, 3, 0.5)

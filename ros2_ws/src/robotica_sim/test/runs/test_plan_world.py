@@ -106,7 +106,8 @@ def test_range_sensors_on_the_world_feed_the_navigator(tmp_path):
     simulator = nodes['simulator'].parameters
     assert simulator['world_file'] == path and simulator['footprint.radius'] == 0.25
     topics = recorded_topics(loaded)
-    assert {'/scan', '/sonar_0', '/sonar_1', '/bumper', '/map'} <= set(topics)
+    assert {'/scan', '/sonar_0', '/sonar_1', '/bumper', '/map',
+            '/world_publisher/markers'} <= set(topics)
     assert {'/scan', '/sonar_0'} <= set(simulator['lockstep.follow_topics'])
 
 
