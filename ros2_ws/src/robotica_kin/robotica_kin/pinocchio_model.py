@@ -13,21 +13,27 @@ unless given), the frame of ``fkine`` and of the Jacobians.
 Pinocchio's split, kept here: the model is built once and then only read, so one
 :class:`PinocchioArm` may serve every thread; the scratch of the algorithms, a
 ``pinocchio.Data`` (``arm.model.createData()``), belongs to the caller, one per node, thread or
-object. Nothing is cached in this module: a caller that computes often keeps its arm and its
-data, and passes them to the functions that take them (``fkine(arm, q, data=data)``). Given a
+object. The arm builds, on first use, what it derives from its robot once and for all (the
+friction law, a copy of the model without gravity) and keeps it; nothing else is cached, and
+nothing mutable: a caller that computes often keeps its arm and its data, and passes them to the
+functions that take them (``fkine(arm, q, data=data)``). Given a
 robot instead, ``fkine`` and the Jacobians take their NumPy route, which needs no model, and the
 dynamics build the model and its scratch for the call. A caller that changes a model (its
 gravity, a payload) builds its own with :func:`build_model`.
 """
 
 from dataclasses import dataclass
-from typing import Any
+from functools import cached_property
+from typing import Any, TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike
 import pinocchio as pin
 
 from robotica_kin.dh import as_dh_model, as_dyn_model, dh_model, DHModel
+
+if TYPE_CHECKING:
+    from robotica_kin.dynamics import JointFriction
 
 __all__ = ['PinocchioArm', 'TOOL_FRAME', 'build_model', 'data_for', 'dyn_arm',
            'pinocchio_arm', 'robot_and_arm']
@@ -64,6 +70,23 @@ class PinocchioArm:
     model: Any
     tool: Any
     tool_frame: int
+
+    @cached_property
+    def friction(self) -> 'JointFriction':
+        """
+        Return the robot's friction law, built on first use and kept (the robot is frozen).
+
+        Raises ValueError for a robot without a ``dyn`` table.
+        """
+        from robotica_kin.dynamics import JointFriction   # dynamics imports this module
+        return JointFriction(self.robot)
+
+    @cached_property
+    def model_without_gravity(self) -> Any:
+        """Return a copy of :attr:`model` without gravity (for V = RNEA at q'' = 0); read-only."""
+        model = pin.Model(self.model)
+        model.gravity = pin.Motion.Zero()
+        return model
 
 
 def pinocchio_arm(dh: DHModel | ArrayLike) -> PinocchioArm:
