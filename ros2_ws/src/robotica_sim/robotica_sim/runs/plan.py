@@ -620,17 +620,18 @@ def _range_grids(scenario: Scenario) -> tuple[dict[str, float], dict[str, float]
     """
     offsets, periods, samples = {}, {}, []
     for kind, topics in _range_topics(scenario).items():
-        model = {'laser': laser_params, 'sonar': sonar_params, 'infrared': infrared_params}[kind]
         values = _range_sensor_parameters(scenario, kind)
-        p = model({k: v for k, v in values.items() if k in RANGE_SENSOR_KEYS[kind][0]})
+        terms = {k: v for k, v in values.items() if k in RANGE_SENSOR_KEYS[kind][0]}
         if kind == 'sonar':
-            cycle = 1.0 / p.cycle_rate
+            sonar = sonar_params(terms)
+            cycle = 1.0 / sonar.cycle_rate
             samples.append(cycle)
             for i, (topic, _) in enumerate(topics):
-                offsets[topic] = (i % p.firing_groups) * cycle
-                periods[topic] = p.firing_groups * cycle
+                offsets[topic] = (i % sonar.firing_groups) * cycle
+                periods[topic] = sonar.firing_groups * cycle
         else:
-            period = 1.0 / (p.scan_rate if kind == 'laser' else p.rate)
+            period = 1.0 / (laser_params(terms).scan_rate if kind == 'laser'
+                            else infrared_params(terms).rate)
             samples.append(period)
             for topic, _ in topics:
                 offsets[topic], periods[topic] = 0.0, period
