@@ -8,6 +8,9 @@ joint, K_p = 25, K_v = 10):
 - **core**: :class:`~robotica_sim.simulation.arm.ArmSimulation` (RK4, four ABA calls per step)
   and :class:`~robotica_ctrl.joint_control.ComputedTorque` (one RNEA call) in one Python loop,
   with the reference sampled each step, as the nodes do; also each part alone [µs per step];
+- **dynamics**: ``rne``, ``inertia``, ``gravity``, ``coriolis`` per call (the arm and one
+  ``data`` kept, inputs checked), each as a ratio to the bare Pinocchio call it wraps, timed
+  in the same run on the same model, data and configurations;
 - **round trip**: the fastest a lockstep loop over DDS can be here: a JointState published by
   this process, answered by an echo process (:func:`run_echo`) with a Float64MultiArray, with
   the QoS and the executor of the arm nodes (EventsExecutor); the RTF limit is step / round
@@ -30,18 +33,20 @@ import numpy as np
 from robotica_ctrl.joint_control import (ComputedTorque, ComputedTorqueGains, JointReference,
                                          JointState)
 from robotica_ctrl.trajectory.sinusoid import sinusoid
+from robotica_kin.pinocchio_model import pinocchio_arm
 from robotica_kin.robots import puma560
+from robotica_sim.benchmarks.kinematics import dynamics_pairs
 from robotica_sim.benchmarks.measurement_row import MeasurementRow
 from robotica_sim.simulation.arm import ArmSimulation, ArmSimulationParams
 
-__all__ = ['core_benchmark', 'loop_benchmark', 'round_trip_benchmark',
+__all__ = ['core_benchmark', 'dynamics_benchmark', 'loop_benchmark', 'round_trip_benchmark',
            'run_echo']
 
 STEP = 1e-3   # [s] 1 kHz
 PING_TOPIC, ECHO_TOPIC = 'bench_joint_states', 'bench_joint_torques'
 
 
-def _per_step(function: Callable[[int], None], steps: int) -> float:
+def _per_step(function: Callable[[int], object], steps: int) -> float:
     """Return the wall-clock time per call of ``function(k)``, k = 0..steps-1 [µs]."""
     start = time.perf_counter()
     for k in range(steps):
@@ -81,6 +86,23 @@ def core_benchmark(steps: int = 5000) -> list[MeasurementRow]:
                        f'{steps} steps, {loop_us:.1f} µs each; max |e| at the end '
                        f'{error:.1e} rad'),
     ]
+
+
+def dynamics_benchmark(count: int = 5000, seed: int = 0) -> list[MeasurementRow]:
+    """Return each dynamics function's time per call over raw Pinocchio's (PUMA 560) [×]."""
+    arm = pinocchio_arm(puma560())
+    rng = np.random.default_rng(seed)
+    q = rng.uniform(arm.robot.qlim[:, 0], arm.robot.qlim[:, 1], size=(count, 6))
+    qd, qdd = rng.uniform(-1.0, 1.0, size=(2, count, 6))
+    rows = []
+    for name, ours, raw, raw_name in dynamics_pairs(arm, arm.model.createData(), q, qd, qdd):
+        ours(0)
+        raw(0)
+        mine, bare = _per_step(ours, count), _per_step(raw, count)
+        rows.append(MeasurementRow(f'{name} / raw Pinocchio', mine / bare, '×',
+                                   f'{name} {mine:.2f} µs, pin.{raw_name} {bare:.2f} µs per '
+                                   f'call, {count} configurations, checked inputs'))
+    return rows
 
 
 def run_echo(count: int) -> None:

@@ -10,28 +10,35 @@ within the joint limits (a seeded generator), it times:
 - ``ikine`` on the poses ``fkine(q)`` of those configurations, per call, with its success rate;
 - the baseline: the product of Craig's link matrices (4.5) built with NumPy for each call, the
   geometric Jacobian from those frames, and HEMERO's own ``ikine`` iteration
-  ``q <- q + pinv(J0) tr2diff(fkine(q), T)`` from ``q0 = 0`` (catalog §12.2), all in plain NumPy.
+  ``q <- q + pinv(J0) tr2diff(fkine(q), T)`` from ``q0 = 0`` (catalog §12.2), all in plain NumPy;
+- for a robot with dynamics (the PUMA 560), ``rne``, ``inertia``, ``gravity`` and ``coriolis``
+  per call (checked inputs, the arm and one ``data``), each next to the bare Pinocchio call it
+  wraps (``rnea``, ``crba``, ``computeGeneralizedGravity``, ``nonLinearEffects``) on the same
+  model, data and configurations; the robotica row carries the ratio of the medians.
 
 Times are wall-clock per configuration [µs] (``time.perf_counter``): median and 95th percentile
 of the per-call times, or the batch time divided by m. Run it with ``robotica bench kin``.
 """
 
+import dataclasses
 from dataclasses import dataclass
 import math
 import time
-from typing import Callable
+from typing import Any, Callable
 
 import numpy as np
 from numpy.typing import NDArray
+import pinocchio as pin
 from robotica_kin.dh import DHModel
+from robotica_kin.dynamics import coriolis, gravity, inertia, rne
 from robotica_kin.forward_kinematics import fkine
 from robotica_kin.ik import ikine_solve
 from robotica_kin.jacobian import jacob0
-from robotica_kin.pinocchio_model import pinocchio_arm
+from robotica_kin.pinocchio_model import pinocchio_arm, PinocchioArm
 from robotica_kin.robots import planar_rrr, puma560
 
-__all__ = ['BenchmarkRow', 'baseline_fkine', 'baseline_ikine', 'baseline_jacob0',
-           'run_kinematics_benchmark']
+__all__ = ['BenchmarkRow', 'DynamicsPair', 'baseline_fkine', 'baseline_ikine', 'baseline_jacob0',
+           'dynamics_pairs', 'run_kinematics_benchmark']
 
 PLANAR_MASK = (1, 1, 0, 0, 0, 1)
 
@@ -48,6 +55,7 @@ class BenchmarkRow:
     median_us: float         # [µs] per configuration
     p95_us: float | None     # [µs] per configuration (per-call mode only)
     success_rate: float | None = None   # ikine only
+    ratio: float | None = None          # dynamics, robotica route: median / raw Pinocchio's
 
 
 def _link(alpha: float, a: float, theta: float, d: float) -> NDArray[np.float64]:
@@ -105,8 +113,7 @@ def baseline_ikine(robot: DHModel, T: NDArray[np.float64], mask: NDArray[np.floa
     return q, False
 
 
-def _per_call(fn: Callable[[NDArray[np.float64]], object],
-              inputs: NDArray[np.float64]) -> NDArray[np.float64]:
+def _per_call(fn: Callable[[Any], object], inputs: NDArray[Any]) -> NDArray[np.float64]:
     times = np.empty(len(inputs))
     for k, x in enumerate(inputs):
         start = time.perf_counter()
@@ -128,6 +135,45 @@ def _batch_row(robot: str, function: str, route: str, fn: Callable[[], object],
     fn()
     per = (time.perf_counter() - start) / count * 1e6
     return BenchmarkRow(robot, function, route, 'batch', count, per, None)
+
+
+DynamicsPair = tuple[str, Callable[[int], object], Callable[[int], object], str]
+
+
+def dynamics_pairs(arm: PinocchioArm, data: Any, q: NDArray[np.float64],
+                   qd: NDArray[np.float64], qdd: NDArray[np.float64]) -> tuple[DynamicsPair, ...]:
+    """
+    Return (name, call k, raw Pinocchio call k, raw name) for rne, inertia, gravity, coriolis.
+
+    Call k computes at configuration k of ``q``, ``qd``, ``qdd`` (shape (m, n)) on the arm's
+    model and the one ``data``: the function of :mod:`robotica_kin.dynamics` with its checks,
+    or the bare Pinocchio algorithm it wraps.
+    """
+    model = arm.model
+    return (('rne', lambda k: rne(arm, q[k], qd[k], qdd[k], data=data),
+             lambda k: pin.rnea(model, data, q[k], qd[k], qdd[k]), 'rnea'),
+            ('inertia', lambda k: inertia(arm, q[k], data=data),
+             lambda k: pin.crba(model, data, q[k]), 'crba'),
+            ('gravity', lambda k: gravity(arm, q[k], data=data),
+             lambda k: pin.computeGeneralizedGravity(model, data, q[k]),
+             'computeGeneralizedGravity'),
+            ('coriolis', lambda k: coriolis(arm, q[k], qd[k], data=data),
+             lambda k: pin.nonLinearEffects(model, data, q[k], qd[k]), 'nonLinearEffects'))
+
+
+def _dynamics_rows(arm: PinocchioArm, q: NDArray[np.float64],
+                   qd: NDArray[np.float64], qdd: NDArray[np.float64]) -> list[BenchmarkRow]:
+    """Time each dynamics function and the bare Pinocchio call it wraps."""
+    name = arm.robot.name
+    index = np.arange(len(q))
+    rows = []
+    for function, ours, raw, raw_name in dynamics_pairs(arm, arm.model.createData(), q, qd, qdd):
+        ours(0)
+        raw(0)
+        mine = _row(name, function, 'robotica', _per_call(ours, index))
+        bare = _row(name, function, f'raw pinocchio ({raw_name})', _per_call(raw, index))
+        rows += [dataclasses.replace(mine, ratio=mine.median_us / bare.median_us), bare]
+    return rows
 
 
 def run_kinematics_benchmark(count: int = 1000, baseline_ik_count: int = 100, seed: int = 0,
@@ -192,4 +238,7 @@ def run_kinematics_benchmark(count: int = 1000, baseline_ik_count: int = 100, se
         rows.append(_row(robot.name, 'ikine', 'numpy baseline (HEMERO pinv)', _per_call(
             lambda T: baseline_solved.append(baseline_ikine(robot, T, weights)[1]),
             goals[:baseline_ik_count]), success=float(np.mean(baseline_solved))))
+        if robot.dyn is not None:
+            say(f'{robot.name}: rne, inertia, gravity, coriolis against raw Pinocchio')
+            rows += _dynamics_rows(arm, q, *rng.uniform(-1.0, 1.0, size=(2,) + q.shape))
     return rows

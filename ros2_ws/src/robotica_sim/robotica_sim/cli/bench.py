@@ -28,7 +28,8 @@ import sys
 import time
 
 from robotica_ctrl.mobile.tracking_laws import LAWS
-from robotica_sim.benchmarks.arm import core_benchmark, loop_benchmark, round_trip_benchmark
+from robotica_sim.benchmarks.arm import (core_benchmark, dynamics_benchmark, loop_benchmark,
+                                         round_trip_benchmark)
 from robotica_sim.benchmarks.kinematics import BenchmarkRow, run_kinematics_benchmark
 from robotica_sim.benchmarks.measurement_row import MeasurementRow
 from robotica_sim.benchmarks.mobile import mobile_core_benchmark
@@ -126,13 +127,15 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def format_table(rows: list[BenchmarkRow]) -> str:
     """Return the rows as a Markdown table (times in µs per configuration)."""
-    lines = ['| robot | function | route | mode | n | median [µs] | p95 [µs] | success |',
-             '|---|---|---|---|---:|---:|---:|---:|']
+    lines = ['| robot | function | route | mode | n | median [µs] | p95 [µs] | success '
+             '| × raw Pinocchio |',
+             '|---|---|---|---|---:|---:|---:|---:|---:|']
     for row in rows:
         p95 = '' if row.p95_us is None else f'{row.p95_us:.1f}'
         success = '' if row.success_rate is None else f'{100.0 * row.success_rate:.1f} %'
+        ratio = '' if row.ratio is None else f'{row.ratio:.1f}×'
         lines.append(f'| {row.robot} | {row.function} | {row.route} | {row.mode} | {row.count} '
-                     f'| {row.median_us:.1f} | {p95} | {success} |')
+                     f'| {row.median_us:.2f} | {p95} | {success} | {ratio} |')
     return '\n'.join(lines)
 
 
@@ -176,6 +179,8 @@ def _arm(args: argparse.Namespace, progress) -> int:
         return 2
     progress('core: simulator and controller in one loop')
     rows: list[MeasurementRow] = core_benchmark(max(args.count, 5000))
+    progress('dynamics functions against raw Pinocchio')
+    rows += dynamics_benchmark(max(args.count, 5000), args.seed)
     progress('DDS round trips through an echo process')
     rows += round_trip_benchmark(args.count)
     if duration > 0.0:

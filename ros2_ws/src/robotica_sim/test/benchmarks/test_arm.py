@@ -5,7 +5,7 @@ The core loop must be a real closed loop: with an exact model, computed torque m
 obey e'' + 10 e' + 25 e = 0 (8.35); from e(0) = 0, e'(0) = 1 rad/s (reference sin t, arm at rest)
 that is e(t) = t exp(-5 t), 7e-11 rad at t = 5 s, so only the 1 kHz zero-order hold remains.
 """
-from robotica_sim.benchmarks.arm import core_benchmark
+from robotica_sim.benchmarks.arm import core_benchmark, dynamics_benchmark
 
 
 def test_core_benchmark_runs_a_converging_loop():
@@ -15,3 +15,11 @@ def test_core_benchmark_runs_a_converging_loop():
     assert rows['core loop RTF'].unit == '×' and rows['core loop RTF'].value > 0.0
     error = float(rows['core loop RTF'].detail.rsplit('max |e| at the end ', 1)[1].split()[0])
     assert error < 1e-3
+
+
+def test_dynamics_benchmark_gives_a_ratio_per_function():
+    rows = dynamics_benchmark(20)
+    assert [row.what for row in rows] == [f'{name} / raw Pinocchio' for name in
+                                          ('rne', 'inertia', 'gravity', 'coriolis')]
+    for row in rows:
+        assert row.unit == '×' and row.value > 0.0 and 'µs' in row.detail

@@ -36,7 +36,7 @@ def test_baseline_ikine_is_hemero_pinv_newton():
 
 def test_benchmark_rows_and_table():
     rows = run_kinematics_benchmark(count=5, baseline_ik_count=2, seed=1)
-    assert len(rows) == 20
+    assert len(rows) == 28
     pairs = {(r.robot, r.function) for r in rows}
     assert pairs >= {('puma560', 'ikine'), ('planar_rrr', 'jacob0')}
     for row in rows:
@@ -47,12 +47,25 @@ def test_benchmark_rows_and_table():
     assert table.count('\n') == len(rows) + 1
 
 
+def test_benchmark_has_each_dynamics_function_against_raw_pinocchio():
+    rows = run_kinematics_benchmark(count=5, baseline_ik_count=1, seed=1)
+    dynamics = [r for r in rows if r.function in ('rne', 'inertia', 'gravity', 'coriolis')]
+    assert {r.robot for r in dynamics} == {'puma560'}    # the planar 3R has no dyn table
+    for function in ('rne', 'inertia', 'gravity', 'coriolis'):
+        ours, raw = (r for r in dynamics if r.function == function)
+        assert ours.route == 'robotica' and raw.route.startswith('raw pinocchio')
+        assert ours.ratio == pytest.approx(ours.median_us / raw.median_us)
+        assert raw.ratio is None and ours.count == raw.count == 5
+    assert format_table(rows).count('×') == 5     # the header and the four ratios
+
+
 def test_bench_command_json(capsys):
     with pytest.raises(SystemExit) as info:
         main(['bench', 'kin', '--count', '3', '--baseline-ik-count', '1', '--json', '--quiet'])
     assert info.value.code == 0
     rows = json.loads(capsys.readouterr().out)
-    assert len(rows) == 20 and rows[0]['function'] == 'fkine'
+    assert len(rows) == 28 and rows[0]['function'] == 'fkine'
+    assert [r['ratio'] is None for r in rows].count(False) == 4
 
 
 def test_bench_command_refuses_a_zero_count(capsys):
