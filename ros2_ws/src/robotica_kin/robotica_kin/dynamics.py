@@ -47,11 +47,12 @@ from robotica_kin.bounds import (bounded_array, MAX_JOINT_ACCELERATION, MAX_JOIN
                                  MAX_JOINT_VELOCITY)
 from robotica_kin.dh import as_dyn_model, DHModel
 from robotica_kin.finite import all_finite
+from robotica_kin.joint_friction import JointFriction
 from robotica_kin.pinocchio_model import data_for, dyn_arm, PinocchioArm
 from scipy.integrate import solve_ivp
 
-__all__ = ['DEFAULT_GRAVITY', 'FdynResult', 'JointFriction', 'coriolis', 'coriolis_matrix', 'fdyn',
-           'friction', 'gravity', 'inertia', 'rne', 'set_gravity']
+__all__ = ['DEFAULT_GRAVITY', 'FdynResult', 'coriolis', 'coriolis_matrix', 'fdyn', 'friction',
+           'gravity', 'inertia', 'rne', 'set_gravity']
 
 DEFAULT_GRAVITY = (0.0, 0.0, -9.81)
 """Gravity acceleration in the base frame {0} [m/s²] when ``grav`` is not given."""
@@ -151,42 +152,6 @@ def _single(result: NDArray[np.float64], like: ArrayLike, name: str) -> NDArray[
     """Return ``result`` (one row for a ``like`` of shape (n,)) if finite, else ValueError."""
     _finite(result, name)
     return result[0] if np.ndim(like) == 1 else result
-
-
-class JointFriction:
-    """
-    The joint friction law of a ``dyn`` table, checked once and evaluated without checks.
-
-    ``F = G² B q' + |G| Tc`` per joint (book (5.84)-(5.86), HEMERO §A.3; see :func:`friction`).
-    For loops that call it every step (a simulator's RK4 stages, a controller at 1 kHz): calling
-    it takes float64 arrays of shape (n,) or (m, n) as they are.
-
-    Examples
-    --------
-    >>> row = [0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 2.0, 0.5, 0.1, -0.1]
-    >>> JointFriction([row])(np.array([3.0, -3.0, 0.0])[:, None]).ravel()
-    array([ 6.2, -6.2,  0. ])
-
-    """
-
-    def __init__(self, dyn: DHModel | ArrayLike) -> None:
-        table = as_dyn_model(dyn).dyn
-        assert table is not None
-        gear = table[:, 16]
-        self.viscous = gear ** 2 * table[:, 17]     # [N m s/rad] at the joint
-        self.coulomb_positive = np.abs(gear) * table[:, 18]   # [N m] for q' > 0
-        self.coulomb_negative = np.abs(gear) * table[:, 19]   # [N m] for q' < 0
-        self.is_zero = not (self.viscous.any() or self.coulomb_positive.any()
-                            or self.coulomb_negative.any())
-        self.has_coulomb = bool(self.coulomb_positive.any() or self.coulomb_negative.any())
-
-    def __call__(self, qd: NDArray[np.float64]) -> NDArray[np.float64]:
-        """Return F(q') [N m | N], the shape of ``qd``."""
-        if not self.has_coulomb:
-            return self.viscous * qd
-        coulomb = np.where(qd > 0.0, self.coulomb_positive,
-                           np.where(qd < 0.0, self.coulomb_negative, 0.0))
-        return self.viscous * qd + coulomb
 
 
 def friction(dyn: DHModel | ArrayLike, qd: ArrayLike) -> NDArray[np.float64]:

@@ -24,16 +24,14 @@ gravity, a payload) builds its own with :func:`build_model`.
 
 from dataclasses import dataclass
 from functools import cached_property
-from typing import Any, TYPE_CHECKING
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
 import pinocchio as pin
 
 from robotica_kin.dh import as_dh_model, as_dyn_model, dh_model, DHModel
-
-if TYPE_CHECKING:
-    from robotica_kin.dynamics import JointFriction
+from robotica_kin.joint_friction import JointFriction
 
 __all__ = ['PinocchioArm', 'TOOL_FRAME', 'build_model', 'data_for', 'dyn_arm',
            'pinocchio_arm', 'robot_and_arm']
@@ -72,13 +70,12 @@ class PinocchioArm:
     tool_frame: int
 
     @cached_property
-    def friction(self) -> 'JointFriction':
+    def friction(self) -> JointFriction:
         """
         Return the robot's friction law, built on first use and kept (the robot is frozen).
 
         Raises ValueError for a robot without a ``dyn`` table.
         """
-        from robotica_kin.dynamics import JointFriction   # dynamics imports this module
         return JointFriction(self.robot)
 
     @cached_property

@@ -18,7 +18,8 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 import pinocchio as pin
 from robotica_kin.dh import as_dyn_model, DHModel
-from robotica_kin.dynamics import JointFriction, set_gravity
+from robotica_kin.dynamics import set_gravity
+from robotica_kin.joint_friction import JointFriction
 from robotica_kin.pinocchio_model import build_model
 
 from .law import gain_field, JointControlLaw, JointReference, JointState, per_joint

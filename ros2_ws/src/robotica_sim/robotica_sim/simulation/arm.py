@@ -28,8 +28,9 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 import pinocchio as pin
 from robotica_kin.dh import as_dyn_model, DHModel
-from robotica_kin.dynamics import DEFAULT_GRAVITY, inertia, JointFriction, set_gravity
+from robotica_kin.dynamics import DEFAULT_GRAVITY, inertia, set_gravity
 from robotica_kin.finite import all_finite
+from robotica_kin.joint_friction import JointFriction
 from robotica_kin.native_library import address, ERROR_SIZE, native_library
 from robotica_kin.parameter_specs import (named_error, parameter_values, ParameterError,
                                           ParameterSpec)
