@@ -27,15 +27,14 @@ floor B read off an Allan plot; a Gauss-Markov bias shows on the Allan plot as a
 is about 0.6 σ at τ of about 2 T. One model is one axis; a 3-axis IMU uses three.
 """
 
-import dataclasses
 from dataclasses import dataclass
 import math
 from typing import Any, Mapping
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from robotica_kin.parameter_specs import (named_error, parameter_values, ParameterSpec,
-                                          seed_spec)
+from robotica_kin.parameter_specs import ParameterSpec, seed_spec
+from robotica_sim.sensors.preset_terms import params_from_parameters, preset_term_specs
 from scipy.signal import lfilter
 
 __all__ = ['GYRO_PARAMETERS', 'GYRO_PRESETS', 'GYRO_TERMS', 'GyroModel', 'GyroParams',
@@ -331,10 +330,7 @@ def gyro_term_specs(preset: str) -> dict[str, ParameterSpec]:
     >>> gyro_term_specs('fog')['saturation'].default == GYRO_PRESETS['fog'].saturation
     True
     """
-    GYRO_PARAMETERS['preset'].check('preset', preset)
-    params = GYRO_PRESETS[preset]
-    return {name: dataclasses.replace(spec, default=getattr(params, name))
-            for name, spec in GYRO_TERMS.items()}
+    return preset_term_specs(GYRO_TERMS, GYRO_PRESETS, GYRO_PARAMETERS['preset'], preset)
 
 
 def gyro_params(parameters: Mapping[str, Any]) -> GyroParams:
@@ -350,11 +346,4 @@ def gyro_params(parameters: Mapping[str, Any]) -> GyroParams:
     >>> gyro_params({'preset': 'fog', 'noise_density': 1e-3}).noise_density
     0.001
     """
-    preset = parameters.get('preset', GYRO_PARAMETERS['preset'].default)
-    specs = {**GYRO_PARAMETERS, **gyro_term_specs(preset)}
-    values = parameter_values(specs, parameters)
-    try:
-        return dataclasses.replace(GYRO_PRESETS[preset],
-                                   **{name: values[name] for name in GYRO_TERMS})
-    except ValueError as err:
-        raise named_error(err, GYRO_TERMS) from None
+    return params_from_parameters(parameters, GYRO_PARAMETERS, GYRO_TERMS, GYRO_PRESETS)
