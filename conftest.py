@@ -167,19 +167,21 @@ def read_output():
 
 
 def check_fuzz_survived(proc: subprocess.Popen, received: dict, recovered: bool,
-                        allow_nan: dict | None = None) -> None:
+                        allow_nan: dict | None = None, allow_inf: dict | None = None) -> None:
     """
     Assert what every fuzz test asserts of a node after its hostile burst.
 
     It recovered (normal output on valid input), is still running, published no non-finite
     number on any output (``allow_nan`` maps a topic to the fields documented as NaN when not
-    known) and printed no traceback.
+    known, ``allow_inf`` to those where ±inf is documented: REP-117 ranges) and printed no
+    traceback.
     """
     from robotica_kin.ros.guarded import non_finite_fields
     assert recovered, f'no normal output after the burst:\n{output_of(proc)}'
     assert proc.poll() is None
     for topic, messages in received.items():
-        bad = [non_finite_fields(m, (allow_nan or {}).get(topic, ())) for m in messages]
+        bad = [non_finite_fields(m, (allow_nan or {}).get(topic, ()),
+                                 allow_inf=(allow_inf or {}).get(topic, ())) for m in messages]
         assert not any(bad), f'{topic} published non-finite {[b for b in bad if b][:3]}'
     assert 'Traceback' not in output_of(proc)
 

@@ -125,29 +125,32 @@ def _plan(msg_type: type) -> _Plan:
     return plan
 
 
-def non_finite_fields(msg: Any, allow_nan: Iterable[str] = (), prefix: str = '') -> list[str]:
+def non_finite_fields(msg: Any, allow_nan: Iterable[str] = (), prefix: str = '',
+                      allow_inf: Iterable[str] = ()) -> list[str]:
     """
     Return the dotted names of the fields of ``msg`` that hold a non-finite float.
 
-    A field named in ``allow_nan`` (dotted, e.g. ``velocity``) may hold NaN ("not known") but
-    never an infinity.
+    A field named in ``allow_nan`` (dotted, e.g. ``velocity``) may hold NaN ("not known"), one
+    named in ``allow_inf`` may hold ±inf (REP-117's ``ranges``: +inf no return, -inf too
+    close); any other non-finite value is named.
     """
     plan = _plan(type(msg))
     bad: list[str] = []
     scalars = plan.get_scalars(msg)
     arrays = [np.asarray(a, dtype=np.float64) for a in plan.get_arrays(msg)]
     if not (all(map(math.isfinite, scalars)) and all(np.isfinite(a).all() for a in arrays)):
-        allowed = set(allow_nan)
-        for path, value in zip(plan.scalars, scalars):
-            if not (math.isfinite(value) or (prefix + path in allowed and math.isnan(value))):
-                bad.append(prefix + path)
-        for path, array in zip(plan.arrays, arrays):
-            if not (np.isfinite(array).all()
-                    or (prefix + path in allowed and not np.isinf(array).any())):
+        nan_ok, inf_ok = set(allow_nan), set(allow_inf)
+        for path, values in [*zip(plan.scalars, scalars), *zip(plan.arrays, arrays)]:
+            refused = ~np.isfinite(values)
+            if prefix + path in nan_ok:
+                refused &= ~np.isnan(values)
+            if prefix + path in inf_ok:
+                refused &= ~np.isinf(values)
+            if np.any(refused):
                 bad.append(prefix + path)
     for path, _ in plan.sequences:
         for i, item in enumerate(attrgetter(path)(msg)):
-            bad += non_finite_fields(item, allow_nan, f'{prefix}{path}[{i}].')
+            bad += non_finite_fields(item, allow_nan, f'{prefix}{path}[{i}].', allow_inf)
     return bad
 
 
@@ -155,6 +158,7 @@ class GuardedPublisher(Publisher):
     """A publisher that refuses non-finite messages and is silent after shutdown."""
 
     allow_nan: frozenset[str] = frozenset()
+    allow_inf: frozenset[str] = frozenset()
     context: Any = None
 
     def publish(self, msg: Any) -> None:
@@ -166,7 +170,7 @@ class GuardedPublisher(Publisher):
         After shutdown (the node's context no longer valid) nothing is published or raised.
         """
         if not isinstance(msg, bytes):
-            bad = non_finite_fields(msg, self.allow_nan)
+            bad = non_finite_fields(msg, self.allow_nan, allow_inf=self.allow_inf)
             if bad:
                 raise NonFiniteOutput(f'non-finite {", ".join(bad)} on {self.topic_name}: '
                                       'not published')
@@ -266,16 +270,19 @@ class GuardedNode(Node):
             **kwargs)
 
     def create_publisher(self, msg_type, topic, qos_profile, *,  # noqa: D417
-                         allow_nan: Iterable[str] = (), **kwargs):
+                         allow_nan: Iterable[str] = (), allow_inf: Iterable[str] = (),
+                         **kwargs):
         """
         Create a :class:`GuardedPublisher`.
 
-        ``allow_nan``: the dotted fields where NaN means "not known" and may be published.
+        ``allow_nan``: the dotted fields where NaN means "not known" and may be published;
+        ``allow_inf``: those where ±inf has a documented meaning (REP-117 ranges).
         """
         if not hasattr(self, '_guard_log'):   # Node.__init__: parameter events carry inf
             return super().create_publisher(msg_type, topic, qos_profile, **kwargs)
         publisher = super().create_publisher(msg_type, topic, qos_profile,
                                              publisher_class=GuardedPublisher, **kwargs)
         publisher.allow_nan = frozenset(allow_nan)
+        publisher.allow_inf = frozenset(allow_inf)
         publisher.context = self.context
         return publisher

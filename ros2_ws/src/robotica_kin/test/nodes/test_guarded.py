@@ -14,7 +14,7 @@ from rclpy.parameter import Parameter
 from robotica_kin.bounds import bounded, MAX_SPEED, StampGate
 from robotica_kin.ros.guarded import GuardedNode, non_finite_fields, NonFiniteOutput
 from rosgraph_msgs.msg import Clock
-from sensor_msgs.msg import JointState
+from sensor_msgs.msg import JointState, LaserScan
 from std_msgs.msg import Float64, Header
 
 pytestmark = pytest.mark.ros
@@ -46,6 +46,15 @@ def test_non_finite_fields_names_each_field_and_allows_declared_nan():
     assert non_finite_fields(joints, ('velocity',)) == []
     joints.velocity = [math.inf]
     assert non_finite_fields(joints, ('velocity',)) == ['velocity']
+
+
+def test_rep117_infinities_are_allowed_only_where_declared():
+    scan = LaserScan(ranges=[1.0, math.inf, -math.inf], range_max=math.inf)
+    assert non_finite_fields(scan) == ['range_max', 'ranges']
+    assert non_finite_fields(scan, allow_inf=('ranges',)) == ['range_max']
+    scan.range_max, scan.ranges = 80.0, [math.nan, math.inf]
+    assert non_finite_fields(scan, allow_inf=('ranges',)) == ['ranges']
+    assert non_finite_fields(scan, ('ranges',), allow_inf=('ranges',)) == []
 
 
 def test_a_failing_callback_is_dropped_and_the_safe_output_issued(guarded):

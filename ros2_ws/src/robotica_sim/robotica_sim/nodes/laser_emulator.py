@@ -15,7 +15,6 @@ from builtin_interfaces.msg import Time
 import numpy as np
 from numpy.typing import NDArray
 from rclpy.experimental import EventsExecutor
-from rclpy.node import Node
 from robotica_kin.ros.entry_point import run_node
 from robotica_kin.ros.parameters import declare
 from robotica_kin.ros.qos import STREAM_PUB_QOS
@@ -37,7 +36,8 @@ class LaserEmulatorNode(RangeSensorNode):
         self._frame = declare(self, 'frame_id', 'laser_link', 'frame_id of the scans',
                               read_only=True)
         self._laser = LaserModel(self._params, np.random.default_rng(values['seed']), mount)
-        self._pub = Node.create_publisher(self, LaserScan, 'scan', STREAM_PUB_QOS)
+        self._pub = self.create_publisher(LaserScan, 'scan', STREAM_PUB_QOS, allow_nan=('ranges',),
+                                          allow_inf=('ranges',))   # REP-117
         self.start(self._params.scan_rate)
         self.get_logger().info(f'laser preset {values["preset"]!r}, {self._params.beams} beams')
 
