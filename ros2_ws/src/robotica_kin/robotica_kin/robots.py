@@ -10,6 +10,7 @@ The book's manipulators as ready-made :class:`~robotica_kin.dh.DHModel` objects.
 :func:`robot_by_name` looks them up by the names the nodes and services use.
 """
 
+from collections.abc import Callable
 import math
 
 import numpy as np
@@ -48,27 +49,41 @@ _PUMA560_DYN_TAIL = [
 ]
 
 # Joint ranges of the PUMA 560 in Craig's frame assignment [deg] (Craig, "Introduction to
-# Robotics", the PUMA 560 of chapter 3), the frames of HEMERO's dhp560.
+# Robotics", the PUMA 560 of chapter 3), the frames of HEMERO's dhp560. HEMERO has no limits:
+# puma560(joint_limits=True) adds them (the appendix's straight line leaves them, see below).
 _PUMA560_LIMITS_DEG = [[-160.0, 160.0], [-225.0, 45.0], [-45.0, 225.0],
                        [-110.0, 170.0], [-100.0, 100.0], [-266.0, 266.0]]
 
 
-def puma560() -> DHModel:
+def puma560(*, joint_limits: bool = False) -> DHModel:
     """
     Return the PUMA 560 of HEMERO (``dhp560`` and its ``dyn`` table, book §A.2-§A.3).
 
-    Lengths in metres; joint limits from Craig's PUMA 560 in the same frames.
+    Lengths in metres. HEMERO's ``dhp560`` has no joint limits, and neither has this model by
+    default: ``qlim`` is ±π, which bounds no revolute joint (``ikine`` wraps angles by 2π).
+    ``joint_limits=True`` adds the ranges of Craig's PUMA 560 in the same frames (joint 2 in
+    [-225°, 45°], joint 3 in [-45°, 225°], ...), the mechanical stops of the real arm, for a
+    plant that stops its joints. With them the appendix's straight line (x = 0.40-0.45 m,
+    y = z = 0.1 m, identity orientation) has no solution: each of its eight solutions puts
+    θ2 past its 45° stop (46-48°) or θ5 past ±100°.
+
+    Parameters
+    ----------
+    joint_limits : bool
+        Add Craig's joint ranges [rad] as ``qlim`` (default False, as HEMERO).
 
     Examples
     --------
     >>> robot = puma560()
     >>> robot.n, robot.dyn.shape, robot.joint_names[0]
     (6, (6, 20), 'joint_1')
+    >>> puma560(joint_limits=True).qlim[1].round(4).tolist()
+    [-3.927, 0.7854]
 
     """
     dyn = np.hstack([np.array(_PUMA560_DH), np.array(_PUMA560_DYN_TAIL)])
-    return dh_model(_PUMA560_DH, name='puma560', qlim=np.array(_PUMA560_LIMITS_DEG) * _DEG,
-                    dyn=dyn)
+    qlim = np.array(_PUMA560_LIMITS_DEG) * _DEG if joint_limits else None
+    return dh_model(_PUMA560_DH, name='puma560', qlim=qlim, dyn=dyn)
 
 
 def _check_lengths(**lengths: float) -> None:
@@ -186,8 +201,9 @@ def robot_by_name(name: str) -> DHModel:
     6
 
     """
-    factories = {'puma560': puma560, 'planar_rr': planar_rr, 'planar_rrr': planar_rrr,
-                 'cylindrical_rpr': cylindrical_rpr}
+    factories: dict[str, Callable[[], DHModel]] = {
+        'puma560': puma560, 'planar_rr': planar_rr, 'planar_rrr': planar_rrr,
+        'cylindrical_rpr': cylindrical_rpr}
     if name not in factories:
         raise ValueError(f'unknown robot {name!r}; known robots: {", ".join(ROBOT_NAMES)}')
     return factories[name]()

@@ -442,8 +442,8 @@ def test_choose_solution_compares_angles_modulo_two_pi():
 
 
 def test_choose_solution_uses_the_whole_joint_range():
-    """PUMA joint 6 spans ±266°: θ6 = 4 rad is reached as 4, not as 4 - 2π."""
-    robot = puma560()
+    """PUMA joint 6 spans ±266° (Craig's ranges): θ6 = 4 rad is reached as 4, not as 4 - 2π."""
+    robot = puma560(joint_limits=True)
     q = np.array([0.1, -0.5, 0.4, 0.3, 0.6, 4.0])
     solutions = ikine_puma560(fkine(robot, q))
     chosen = choose_solution(solutions, q, qlim=robot.qlim)

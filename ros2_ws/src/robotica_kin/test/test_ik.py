@@ -73,6 +73,35 @@ def test_ejemplo_h_3_1_arc_converges_when_warm_started():
     np.testing.assert_allclose(np.cos(q.sum(axis=1)), 1.0, atol=1e-9)
 
 
+def _appendix_line():
+    """Return the appendix's straight line (catalog §12.6, fig. A.1) as 51 poses of {6} in {0}."""
+    x = np.arange(0.40, 0.45 + 1e-9, 0.001)            # x = 0.40:0.001:0.45 m
+    TG = np.tile(np.eye(4), (x.size, 1, 1))           # identity orientation
+    TG[:, 0, 3], TG[:, 1, 3], TG[:, 2, 3] = x, 0.1, 0.1
+    return TG
+
+
+def test_appendix_puma_line_reaches_stol_with_hemeros_dhp560():
+    # Catalog §12.6: q = ikine(dhp560, stol, ilimit, TG) on x = 0.40:0.001:0.45 m, y = z = 0.1 m.
+    # The book uses stol = 0.1; HEMERO's dhp560 has no joint limits, and every point is reached
+    # at stol = 1e-6 (issue 20 measured 7.7e-7 at worst).
+    TG = _appendix_line()
+    assert TG.shape == (51, 4, 4)
+    robot = puma560()
+    stol = 1e-6
+    q = ikine(robot, TG, stol, 1000)
+    assert q.shape == (51, 6)
+    for qi, goal in zip(q, TG):
+        assert _pose_error(fk_by_link_product(robot, qi), goal) < stol
+
+
+def test_appendix_puma_line_leaves_craigs_joint_ranges():
+    # With Craig's ranges (joint 2 stops at 45°, joint 5 at ±100°) no point of the line has a
+    # solution: why puma560() follows HEMERO and leaves them out by default.
+    result = ikine_solve(puma560(joint_limits=True), _appendix_line(), 1e-6, 1000)
+    assert not result.success.any()
+
+
 def test_trajectory_rows_of_16_are_matlab_column_major():
     robot = puma560()
     q_true, goals = _random_goals(robot, 3, seed=3)

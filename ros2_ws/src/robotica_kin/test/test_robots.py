@@ -25,6 +25,14 @@ def test_puma560_tables_are_hemero_dhp560_and_fig_a7():
     assert robot.within_limits(np.zeros(6))
 
 
+def test_puma560_joint_limits_are_opt_in():
+    # HEMERO's dhp560 has none: the default ±π bounds no revolute joint. Craig's PUMA 560 ranges
+    # [deg] in the same frames come with joint_limits=True.
+    np.testing.assert_array_equal(puma560().qlim, [[-math.pi, math.pi]] * 6)
+    craig = [[-160, 160], [-225, 45], [-45, 225], [-110, 170], [-100, 100], [-266, 266]]
+    np.testing.assert_allclose(np.degrees(puma560(joint_limits=True).qlim), craig, rtol=1e-12)
+
+
 def test_planar_and_cylindrical_tables():
     np.testing.assert_allclose(planar_rrr(4.0, 3.0).a, [0, 4, 3])
     np.testing.assert_allclose(planar_rr(4.0, 3.0).tool[:3, 3], [3, 0, 0])

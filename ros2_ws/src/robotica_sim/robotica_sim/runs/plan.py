@@ -383,7 +383,11 @@ def _arm_parameters(scenario: Scenario) -> tuple[dict, dict, list[str]]:
     """Return the plant's and the controller's model parameters and the joint names."""
     arm = scenario.arm
     if arm.model == 'puma560':
-        return {'robot': 'puma560'}, {'robot': 'puma560'}, list(puma560().joint_names)
+        # The plant is the real arm: Craig's stops, where respect_limits stops its joints. The
+        # controller's model is HEMERO's dhp560, which has no limits (robots.puma560).
+        stops = _floats(np.ravel(puma560(joint_limits=True).qlim))
+        return ({'robot': 'puma560', 'joint_limits': stops}, {'robot': 'puma560'},
+                list(puma560().joint_names))
     dyn = two_link_arm(*arm.masses, *arm.lengths)[1]
     masses = scenario.controller.model_masses or arm.masses
     estimate = two_link_arm(*masses, *arm.lengths)[1]
