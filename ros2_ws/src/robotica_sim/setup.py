@@ -35,6 +35,7 @@ setup(
             'sonar_emulator = robotica_sim.nodes.sonar_emulator:main',
             'infrared_emulator = robotica_sim.nodes.infrared_emulator:main',
             'laser_emulator = robotica_sim.nodes.laser_emulator:main',
+            'ft_sensor_emulator = robotica_sim.nodes.ft_sensor_emulator:main',
             'odometry = robotica_sim.nodes.odometry:main',
             'recorder = robotica_sim.nodes.recorder:main',
             'view_relay = robotica_sim.nodes.view_relay:main',

@@ -12,7 +12,7 @@ import random
 import signal
 import time
 
-from geometry_msgs.msg import Twist, Vector3
+from geometry_msgs.msg import Twist, Vector3, WrenchStamped
 from nav_msgs.msg import Odometry, Path
 import pytest
 from rcl_interfaces.msg import Log
@@ -98,6 +98,12 @@ def _reference(t):
     return _stamped(JointControllerState(reference_position=[0.1 * t] * 6), t)
 
 
+def _wrench(t):
+    msg = _stamped(WrenchStamped(), t)
+    msg.wrench.force.z, msg.wrench.torque.x = -20.0, 0.5
+    return msg
+
+
 ROOM = pathlib.Path(__file__).resolve().parents[2] / 'scenarios' / 'room_laser_vff.yaml'
 """A closed room (a scenario with a world: section): every beam from inside it meets a wall."""
 
@@ -147,6 +153,10 @@ CASES = {
                          lambda m: m.header.stamp.sec >= 100),
     'gps_emulator': ([], {'ground_truth/odom': (Odometry, _truth)}, {'gps/fix': (NavSatFix, ())},
                      'gps/fix', lambda m: m.header.stamp.sec >= 100),
+    'ft_sensor_emulator': ([], {'contact_wrench': (WrenchStamped, _wrench)},
+                           {'ft_sensor/wrench': (WrenchStamped, ()),
+                            'ft_sensor/gauges': (Float64MultiArray, ())}, 'ft_sensor/wrench',
+                           lambda m: m.header.stamp.sec >= 100),
     'markers': (
         ['-p', 'vehicle.type:=differential', '-p', 'publish_rate:=50.0'],
         {'path': (Path, lambda t: path_message([[0.0, 0.0], [t, 1.0]], 'map', t)),
