@@ -13,7 +13,8 @@ from hypothesis import given, settings
 import hypothesis.strategies as st
 import numpy as np
 import pytest
-from robotica_kin.dh import dh_model
+from reference_models import link_transform
+from robotica_kin.dh import as_dh_model, dh_model
 from robotica_kin.forward_kinematics import fkine
 from robotica_kin.jacobian import _paul_jacobians, jacob0, jacobn, manipulability
 from robotica_kin.pinocchio_model import pinocchio_arm
@@ -148,22 +149,43 @@ PUMA_EJ_4_7 = [
 ]
 
 
+def geometric_jacobians(table, q):
+    """
+    Return ``(⁰J, ⁶J)`` of an all-revolute table, built here from its link frames (reference).
+
+    Frames {1} … {n} by the product of Craig's link transforms (4.5) (``reference_models``);
+    column i of ⁰J is ``[z_i × (p_n - p_i); z_i]`` (joint i turns about Z_i of frame {i}), and
+    ⁶J is ⁰J with both halves in frame {n}: no robotica code is involved.
+    """
+    T = np.eye(4)
+    frames = []
+    for (alpha, a, _, d, _), theta in zip(table, q):
+        T = T @ link_transform(alpha, a, theta, d)
+        frames.append(T)
+    p_n, R_n = frames[-1][:3, 3], frames[-1][:3, :3]
+    J_0 = np.array([np.concatenate([np.cross(F[:3, 2], p_n - F[:3, 3]), F[:3, 2]])
+                    for F in frames]).T
+    return J_0, blkdiag(R_n.T) @ J_0
+
+
 @pytest.mark.parametrize('robot', [puma560(), PUMA_EJ_4_7], ids=['dhp560', 'ej_4_7'])
 def test_ejemplo_4_7(robot):
     """
-    Ej. 4.7 (catalog 2.6): PUMA 560, jacobn = velprop columns; jacob0 = blkdiag(R, R) jacobn.
+    Ej. 4.7 (catalog 2.6): the PUMA 560's Jacobian by velprop and jacobn, and jacob0.
 
-    Column i of the tool-frame Jacobian is velprop with ``qd = e_i`` (4.77); R is the rotation
-    of fkine.
+    The book computes it both ways and prints no numbers; the reference is the geometric
+    Jacobian of the table's own link frames, computed in this test. Column i of the tool-frame
+    Jacobian is velprop with ``qd = e_i`` (4.77).
     """
+    table = as_dh_model(robot).table
     rng = np.random.default_rng(47)
     for _ in range(10):
         q = rng.uniform(-math.pi, math.pi, 6)
+        J_0, J_n = geometric_jacobians(table, q)
         by_velprop = np.column_stack([velprop(robot, q, e) for e in np.eye(6)])
-        J_n = jacobn(robot, q)
-        np.testing.assert_allclose(J_n, by_velprop, rtol=0, atol=1e-12)
-        np.testing.assert_allclose(jacob0(robot, q), blkdiag(fkine(robot, q)[:3, :3]) @ J_n,
-                                   rtol=0, atol=1e-12)
+        np.testing.assert_allclose(by_velprop, J_n, rtol=0, atol=1e-12)
+        np.testing.assert_allclose(jacobn(robot, q), J_n, rtol=0, atol=1e-12)
+        np.testing.assert_allclose(jacob0(robot, q), J_0, rtol=0, atol=1e-12)
 
 
 ROBOTS = [puma560(), planar_rr(0.7, 0.4), planar_rrr(1.0, 0.8, 0.3), cylindrical_rpr(0.3)]
