@@ -12,6 +12,8 @@ import math
 from geometry_msgs.msg import WrenchStamped
 import numpy as np
 import pytest
+from rclpy.parameter import Parameter
+from rclpy.parameter_client import AsyncParameterClient
 from rclpy.qos import QoSProfile, ReliabilityPolicy
 from robotica_kin.ros.qos import STREAM_PUB_QOS
 from std_msgs.msg import Float64MultiArray
@@ -45,21 +47,25 @@ def gauge_volts(wrench, scale=5e-3, rho=0.02):
     return volts
 
 
-def _connect(node, executor, spin):
+IDEAL = ('-p', 'noise_stddev:=0.0', '-p', 'adc_bits:=0')   # no noise, no ADC
+
+
+def _start(start_node, ros_node, spin, *arguments):
+    """Start the node with ``arguments``; return the probe, its executor, publisher, inboxes."""
+    node, executor = ros_node
+    start_node('robotica_sim', 'ft_sensor_emulator', *arguments)
     wrenches, gauges = [], []
     node.create_subscription(WrenchStamped, 'ft_sensor/wrench', wrenches.append, QOS)
     node.create_subscription(Float64MultiArray, 'ft_sensor/gauges', gauges.append, QOS)
     pub = node.create_publisher(WrenchStamped, 'contact_wrench', STREAM_PUB_QOS)
     assert spin(executor, lambda: pub.get_subscription_count() > 0
                 and node.count_publishers('ft_sensor/wrench') > 0)
-    return pub, wrenches, gauges
+    return node, executor, pub, wrenches, gauges
 
 
 def test_noise_free_sensor_recovers_the_wrench(start_node, ros_node, spin):
-    node, executor = ros_node
-    start_node('robotica_sim', 'ft_sensor_emulator', '-p', 'preset:=metal_foil',
-               '-p', 'noise_stddev:=0.0', '-p', 'adc_bits:=0')
-    pub, wrenches, gauges = _connect(node, executor, spin)
+    _, executor, pub, wrenches, gauges = _start(start_node, ros_node, spin,
+                                                '-p', 'preset:=metal_foil', *IDEAL)
     pub.publish(contact(12.25, WRENCH))
     assert spin(executor, lambda: wrenches and gauges, timeout=10.0)
     out = wrenches[0]
@@ -75,9 +81,8 @@ def test_noisy_readings_scatter_about_the_wrench(start_node, ros_node, spin):
     # has σ² / |column|²: σ_fx = √2 σ / s = 0.28 N, σ_fz = 2 σ / s, σ_mx = √2 ρ σ / s,
     # σ_mz = 2 ρ σ / s (the ADC's quantum adds 1 %; the model's test checks the covariance
     # exactly). 100 readings of a constant wrench average within 5 σ / √100 of it.
-    node, executor = ros_node
-    start_node('robotica_sim', 'ft_sensor_emulator', '-p', 'seed:=3', '-p', 'frame_id:=wrist')
-    pub, wrenches, _ = _connect(node, executor, spin)
+    _, executor, pub, wrenches, _ = _start(start_node, ros_node, spin, '-p', 'seed:=3',
+                                           '-p', 'frame_id:=wrist')
     for k in range(100):
         pub.publish(contact(1.0 + 0.01 * k, WRENCH))
         spin(executor, lambda: False, timeout=0.003)
@@ -94,16 +99,42 @@ def test_noisy_readings_scatter_about_the_wrench(start_node, ros_node, spin):
 
 def test_a_given_calibration_matrix_and_no_gauges_topic(start_node, ros_node, spin):
     # H = I stacked on I (12 gauges, two a wrench axis): each recovered axis is the mean of two.
-    node, executor = ros_node
-    start_node('robotica_sim', 'ft_sensor_emulator', '-p', 'noise_stddev:=0.0',
-               '-p', 'adc_bits:=0', '-p', 'publish_gauges:=false',
-               '-p', 'calibration_matrix:=' + str(np.vstack([np.eye(6)] * 2).ravel().tolist()))
-    pub, wrenches, gauges = _connect(node, executor, spin)
+    node, executor, pub, wrenches, gauges = _start(
+        start_node, ros_node, spin, *IDEAL, '-p', 'publish_gauges:=false',
+        '-p', 'calibration_matrix:=' + str(np.vstack([np.eye(6)] * 2).ravel().tolist()))
     pub.publish(contact(5.0, [1.0, 2.0, 3.0, 0.1, 0.2, 0.3]))
     assert spin(executor, lambda: wrenches, timeout=10.0)
     np.testing.assert_allclose(as_array(wrenches[0]), [1.0, 2.0, 3.0, 0.1, 0.2, 0.3],
                                rtol=1e-12)
     assert node.count_publishers('ft_sensor/gauges') == 0 and not gauges
+
+
+def _set(client, executor, spin, name, value):
+    """Return the result of setting the parameter ``name`` of the node to ``value``."""
+    future = client.set_parameters([Parameter(name, value=value)])
+    assert spin(executor, future.done, timeout=10.0)
+    return future.result().results[0]
+
+
+def test_terms_set_at_run_time_are_checked_and_change_h(start_node, ros_node, spin):
+    # Twice the gauge factor (platinum 4.8 against 2.4, book (7.8)): twice the volts of
+    # (7.9), the same recovered wrench; K = 0 would read nothing and is refused.
+    node, executor, pub, wrenches, gauges = _start(start_node, ros_node, spin, *IDEAL,
+                                                   '-p', 'gauge_factor:=2.4')
+    pub.publish(contact(1.0, WRENCH))
+    assert spin(executor, lambda: gauges, timeout=10.0)
+    client = AsyncParameterClient(node, 'ft_sensor_emulator')
+    assert client.wait_for_services(timeout_sec=10.0)
+    refused = _set(client, executor, spin, 'gauge_factor', 0.0)
+    assert not refused.successful and 'gauge_factor' in refused.reason
+    assert _set(client, executor, spin, 'gauge_factor', 4.8).successful
+    pub.publish(contact(1.01, WRENCH))
+    assert spin(executor, lambda: len(gauges) >= 2 and len(wrenches) >= 2, timeout=10.0)
+    np.testing.assert_allclose(gauges[1].data, gauge_volts(WRENCH, scale=1.2e-2),
+                               rtol=1e-12, atol=1e-15)
+    np.testing.assert_allclose(gauges[1].data, 2.0 * np.array(gauges[0].data), rtol=1e-12,
+                               atol=1e-15)
+    np.testing.assert_allclose(as_array(wrenches[1]), WRENCH, rtol=1e-9)
 
 
 @pytest.mark.parametrize('argument, named', [
