@@ -6,6 +6,7 @@ The book's manipulators as ready-made :class:`~robotica_kin.dh.DHModel` objects.
 - :func:`planar_rr`, :func:`planar_rrr`: the planar arms of Ej. 4.1 (frame {n} at the end of the
   last link in the RR; at the last joint in the 3R, as the book's table puts it).
 - :func:`cylindrical_rpr`: the R-P-R robot of Ej. 4.2 (Table 4.3).
+- :func:`pp_robot`: the planar Cartesian PP robot of Ej. 8.10-8.11 (Lewis et al.), force control.
 
 :func:`robot_by_name` looks them up by the names the nodes and services use.
 """
@@ -18,8 +19,8 @@ import numpy as np
 from robotica_kin.dh import dh_model, DHModel
 from robotica_kin.transforms import transl
 
-__all__ = ['ROBOT_NAMES', 'cylindrical_rpr', 'planar_rr', 'planar_rrr', 'puma560', 'robot_by_name',
-           'two_link_arm']
+__all__ = ['ROBOT_NAMES', 'cylindrical_rpr', 'planar_rr', 'planar_rrr', 'pp_robot', 'puma560',
+           'robot_by_name', 'two_link_arm']
 
 _DEG = math.pi / 180.0
 
@@ -182,7 +183,56 @@ def two_link_arm(m1: float, m2: float, l1: float,
     return dh, dyn
 
 
-ROBOT_NAMES = ('puma560', 'planar_rr', 'planar_rrr', 'cylindrical_rpr')
+# The PP robot's tool frame: frame {2} turned back parallel to {0} (R_0_2 is its own inverse).
+_PP_TOOL = [[0.0, 0.0, 1.0, 0.0], [0.0, -1.0, 0.0, 0.0], [1.0, 0.0, 0.0, 0.0],
+            [0.0, 0.0, 0.0, 1.0]]
+_PP_TRAVEL = 10.0   # [m] joint range ±, wide enough for Ej. 8.10-8.11 (d1 = 3√2 m at the start)
+
+
+def pp_robot(m1: float = 2.0, m2: float = 0.35) -> DHModel:
+    """
+    Return the planar Cartesian PP robot of Ej. 8.10-8.11 (Lewis et al.) with masses m1, m2 [kg].
+
+    The book's model (8.182)-(8.183), in its joint order ``[d1, d2]``: ``M = diag(m1, m1 + m2)``,
+    ``G = [0; (m1 + m2) g]``. d2 moves both masses, so it is the base joint: no serial chain
+    has them in the book's order (the base joint of a Cartesian chain moves every link, so its
+    M entry is the larger). The chain's order is therefore ``q = [d2, d1]``, joints named
+    ``d2_vertical`` and ``d1_horizontal``: ``q[::-1]`` is the book's ``[d1, d2]``, and in the
+    chain's order ``M = diag(m1 + m2, m1)``, ``G = [(m1 + m2) g; 0]``.
+
+    The robot moves in the XY plane of {0}: d1 along X, d2 along Y (up), so the end effector is
+    at ``p = [d1, d2, 0]`` [m] and gravity is ``grav = [0, -g, 0]``, as the book's planar arms
+    (5.58) and :func:`two_link_arm`. Table ``[[-π/2 0 -π/2 d2 1], [-π/2 0 0 d1 1]]``; link 1
+    (moved by d2 only) has mass m2, link 2 (the end effector) m1, as point masses at the frame
+    origins, no friction, gear ratio 1. The tool frame is parallel to {0}. Limits ±10 m.
+
+    Raises
+    ------
+    ValueError
+        For m1 not finite and > 0, or m2 not finite and >= 0.
+
+    Examples
+    --------
+    >>> robot = pp_robot()
+    >>> robot.joint_names, robot.dyn[:, 5].tolist()
+    (('d2_vertical', 'd1_horizontal'), [0.35, 2.0])
+
+    """
+    if not (math.isfinite(m1) and m1 > 0.0):
+        raise ValueError(f'm1 must be a finite mass > 0 kg, got {m1!r}')
+    if not (math.isfinite(m2) and m2 >= 0.0):
+        raise ValueError(f'm2 must be a finite mass >= 0 kg, got {m2!r}')
+    dh = np.array([[-math.pi / 2, 0.0, -math.pi / 2, 0.0, 1.0],
+                   [-math.pi / 2, 0.0, 0.0, 0.0, 1.0]])
+    dyn = np.zeros((2, 20))
+    dyn[:, :5] = dh
+    dyn[:, 5] = [m2, m1]
+    dyn[:, 16] = 1.0
+    return dh_model(dh, name='pp_robot', qlim=[[-_PP_TRAVEL, _PP_TRAVEL]] * 2,
+                    joint_names=('d2_vertical', 'd1_horizontal'), dyn=dyn, tool=_PP_TOOL)
+
+
+ROBOT_NAMES = ('puma560', 'planar_rr', 'planar_rrr', 'cylindrical_rpr', 'pp_robot')
 """Names accepted by :func:`robot_by_name` (each with its default dimensions)."""
 
 
@@ -203,7 +253,7 @@ def robot_by_name(name: str) -> DHModel:
     """
     factories: dict[str, Callable[[], DHModel]] = {
         'puma560': puma560, 'planar_rr': planar_rr, 'planar_rrr': planar_rrr,
-        'cylindrical_rpr': cylindrical_rpr}
+        'cylindrical_rpr': cylindrical_rpr, 'pp_robot': pp_robot}
     if name not in factories:
         raise ValueError(f'unknown robot {name!r}; known robots: {", ".join(ROBOT_NAMES)}')
     return factories[name]()
