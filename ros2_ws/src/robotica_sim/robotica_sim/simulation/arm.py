@@ -9,7 +9,11 @@ PUMA example adds 0.1 N m s on joint 1). Torques are saturated at ``tau_max``; a
 reaches a limit stops there (its velocity is zeroed if it points outwards). A payload grasped
 at some instant (Ej. 8.4) is added to the last link's inertia with
 :meth:`ArmSimulation.add_payload`; :meth:`ArmSimulation.step_braked` is the safe stop (brakes
-hold the joints).
+hold the joints). An optional environment, a
+:class:`~robotica_sim.simulation.compliant_environment.CompliantPlane`, loads the joints with
+``τ_e = Jᵀ ψ`` (8.165)-(8.166) of the force ψ the end effector exerts on it: computed at the
+start of each step from the state and held over the step like the torque, which becomes
+``tau - τ_e`` for the compiled step; :meth:`ArmSimulation.contact_wrench` reads ψ.
 
 The state is owned here; time is a step counter times ``step_period`` (no clock is read). The
 RK4 step and the joint stops run compiled (package ``robotica_native``, arm_step.cpp: four ABA
@@ -30,11 +34,15 @@ import pinocchio as pin
 from robotica_kin.dh import as_dyn_model, DHModel
 from robotica_kin.dynamics import DEFAULT_GRAVITY, inertia, set_gravity
 from robotica_kin.finite import all_finite
+from robotica_kin.forward_kinematics import fkine
+from robotica_kin.jacobian import jacob0
 from robotica_kin.joint_friction import JointFriction
 from robotica_kin.native_library import address, ERROR_SIZE, native_library
 from robotica_kin.parameter_specs import (named_error, parameter_values, ParameterError,
                                           ParameterSpec)
-from robotica_kin.pinocchio_model import build_model
+from robotica_kin.pinocchio_model import build_model, pinocchio_arm
+
+from .compliant_environment import CompliantPlane, ContactWrench
 
 __all__ = ['ARM_SIMULATOR_PARAMETERS', 'ArmSimulation', 'ArmSimulationParams', 'arm_simulation']
 
@@ -73,6 +81,13 @@ class ArmSimulation:
         Step, gravity, saturation and unmodelled friction.
     q0, qd0 : array_like, shape (n,)
         Initial joint positions [rad | m] and velocities.
+    environment : CompliantPlane, optional
+        A surface the end effector (the tool frame's origin) presses on; default none.
+
+    Attributes
+    ----------
+    contact_joint_torque : ndarray, shape (n,)
+        ``τ_e = Jᵀ ψ`` [N m | N] at the current state, the load the next step holds.
 
     Examples
     --------
@@ -89,9 +104,21 @@ class ArmSimulation:
     """
 
     def __init__(self, robot: DHModel, params: ArmSimulationParams, q0: ArrayLike,
-                 qd0: ArrayLike) -> None:
+                 qd0: ArrayLike, environment: CompliantPlane | None = None) -> None:
         robot = as_dyn_model(robot)
         n = robot.n
+        if environment is not None and not isinstance(environment, CompliantPlane):
+            raise ValueError(f'environment must be a CompliantPlane or None, got '
+                             f'{type(environment).__name__}')
+        self.environment = environment
+        # Kinematics of the contact point (its own model and scratch: the payload changes
+        # only the dynamics model), and the wrench without an environment.
+        self._kinematics = pinocchio_arm(robot) if environment is not None else None
+        self._kinematics_data = (self._kinematics.model.createData()
+                                 if self._kinematics is not None else None)
+        self._contact = ContactWrench(np.zeros(3), np.zeros(3), np.zeros(3), np.zeros(3),
+                                      math.nan)
+        self.contact_joint_torque = np.zeros(n)
         for name, values in (('tau_max', params.tau_max),
                              ('unmodelled_viscous', params.unmodelled_viscous)):
             if values and len(values) != n:
@@ -149,6 +176,29 @@ class ArmSimulation:
         self.qd = qd.copy()
         self.steps = 0
         self.applied_torque = np.zeros(self.robot.n)
+        self._update_contact()
+
+    def _update_contact(self) -> None:
+        """Compute ψ, the contact wrench and τ_e = Jᵀ ψ at the current state (q, q')."""
+        if self.environment is None or self._kinematics is None:
+            return
+        T_0_tool = fkine(self._kinematics, self.q, data=self._kinematics_data)
+        J = jacob0(self._kinematics, self.q, data=self._kinematics_data)[:3]
+        point, R_0_tool = T_0_tool[:3, 3], T_0_tool[:3, :3]
+        psi = self.environment.force(point, J @ self.qd)
+        self.contact_joint_torque = J.T @ psi
+        self._contact = ContactWrench(force=psi, torque=np.zeros(3), force_tool=R_0_tool.T @ psi,
+                                      torque_tool=np.zeros(3),
+                                      penetration=self.environment.penetration(point))
+
+    def contact_wrench(self) -> ContactWrench:
+        """
+        Return the contact wrench at the current state: ψ in {0} and in the tool frame.
+
+        The force the end effector exerts on the environment (book (8.164)); zero, with a NaN
+        penetration, for an arm without environment.
+        """
+        return self._contact
 
     @property
     def time(self) -> float:
@@ -171,13 +221,15 @@ class ArmSimulation:
         if self._saturates:
             torque = np.clip(torque, -self._tau_max, self._tau_max)
         buffers = self._buffers
-        buffers[0], buffers[1], buffers[2] = self.q, self.qd, torque
+        buffers[0], buffers[1] = self.q, self.qd
+        buffers[2] = torque if self.environment is None else torque - self.contact_joint_torque
         if self._native_step(self._native, *self._addresses, self.params.step_period,
                              self._error, ERROR_SIZE):
             raise RuntimeError(f'robotica_native: {self._error.value.decode()}')
         self.q, self.qd = buffers[0].copy(), buffers[1].copy()   # callers may keep old ones
         self.applied_torque = torque
         self.steps += 1
+        self._update_contact()
         return self.q
 
     def step_braked(self) -> NDArray[np.float64]:
@@ -189,6 +241,7 @@ class ArmSimulation:
         self.qd = np.zeros(self.robot.n)
         self.applied_torque = np.zeros(self.robot.n)
         self.steps += 1
+        self._update_contact()
         return self.q
 
     def add_payload(self, mass: float, com: ArrayLike) -> None:
@@ -248,14 +301,15 @@ def _per_joint(values: Any, n: int, name: str) -> tuple[float, ...]:
     return tuple(float(v) for v in values)
 
 
-def arm_simulation(robot: DHModel, parameters: Mapping[str, Any],
-                   step_period: float) -> ArmSimulation:
+def arm_simulation(robot: DHModel, parameters: Mapping[str, Any], step_period: float,
+                   environment: CompliantPlane | None = None) -> ArmSimulation:
     """
     Return the simulation the arm simulator node runs for ``robot`` and its ``parameters``.
 
     ``parameters`` maps the node's names (:data:`ARM_SIMULATOR_PARAMETERS`,
     ``initial_positions`` ...) to values; missing ones take their defaults, others are ignored.
-    ``step_period`` [s] is the simulated time per step.
+    ``step_period`` [s] is the simulated time per step; ``environment`` an optional surface
+    (:class:`ArmSimulation`).
 
     Raises
     ------
@@ -291,4 +345,5 @@ def arm_simulation(robot: DHModel, parameters: Mapping[str, Any],
         raise ValueError(f'the mass matrix M(q0) is singular (eigenvalues '
                          f'{np.round(eigenvalues, 12).tolist()}): a link without mass or '
                          'inertia cannot be simulated')
-    return ArmSimulation(robot, params, start['initial_positions'], start['initial_velocities'])
+    return ArmSimulation(robot, params, start['initial_positions'], start['initial_velocities'],
+                         environment)
