@@ -8,8 +8,11 @@ inverse-dynamics control of §8.3.2 (8.27)-(8.31), (8.36).
 """
 
 from .computed_torque import ComputedTorque, ComputedTorqueGains
+from .iterative_learning import (IterativeLearningControl, LearnedFeedforward,
+                                 learning_gain_margin, LearningGains)
 from .law import JointControlLaw, JointReference, JointState
 from .pid import DecoupledPID, PIDGains
 
-__all__ = ['ComputedTorque', 'ComputedTorqueGains', 'DecoupledPID', 'JointControlLaw',
-           'JointReference', 'JointState', 'PIDGains']
+__all__ = ['ComputedTorque', 'ComputedTorqueGains', 'DecoupledPID', 'IterativeLearningControl',
+           'JointControlLaw', 'JointReference', 'JointState', 'LearnedFeedforward',
+           'LearningGains', 'learning_gain_margin', 'PIDGains']
