@@ -21,6 +21,10 @@ restricted to those rows.
 After each :meth:`~CartesianControlLaw.update` the law's :attr:`~CartesianControlLaw.telemetry`
 holds a :class:`CartesianTelemetry` of that step (None before the first and after
 :meth:`~CartesianControlLaw.reset`).
+
+Timing (``timeit``, PUMA 560, one ``update`` on a shared 2-core machine under load): resolved
+rate and transpose Jacobian 145-165 µs, operational space 185-200 µs; the input checks of
+``tr2diff`` take about 50 µs of it, ``fkine`` 6, ``jacob0`` 4 and the SVD 8.
 """
 
 from abc import ABC, abstractmethod

@@ -31,7 +31,9 @@ J^# is one of three modes, all through the SVD ``J = U Σ Vᵀ``:
   0, with ε the law's ``singular_threshold``. Nakamura & Hanafusa vary λ with the
   manipulability, ``λ = λ_0 (1 − w/w_0)²``; the smallest singular value is the distance to the
   singularity along the one direction that is lost (Maciejewski & Klein 1988; Chiaverini,
-  Siciliano & Egeland 1994). Without it λ = λ_max always (Wampler).
+  Siciliano & Egeland 1994). Without it λ = λ_max always (Wampler). With λ_max = ε (the
+  defaults, 0.05) every singular value is resolved with a gain σ / (σ² + λ²) <= 1/ε, so
+  ``|q_d'| <= |x_d' + K_x x̃| / ε`` everywhere, singularities included.
 
 The singularity is reported in the telemetry (:class:`~.law.CartesianTelemetry`) at q_d:
 ``manipulability``, ``min_singular_value``, ``near_singularity`` (σ_min < ε) and ``damping``
