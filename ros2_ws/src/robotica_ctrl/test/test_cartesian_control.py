@@ -484,7 +484,7 @@ def test_resolved_rate_2r_follows_a_cartesian_line():
 
 
 def test_resolved_rate_puma_wrist_singularity_dls_bounded_inverse_blows_up():
-    """The wrist passes 0.6 mrad from q5 = 0: J⁻¹ asks 224 rad/s; DLS stays below |x'|/ε."""
+    """The wrist crosses q5 = 0 (σ_min 6e-4): J⁻¹ asks 224 rad/s; DLS stays below |x'|/ε."""
     q_a = np.array([0.0, -0.5, 0.6, 0.0, 0.3, 0.0])
     q_b = np.array([0.0, -0.5, 0.6, 0.02, -0.3, -0.02])
     references = timed_line(fk_by_link_product(PUMA, q_a), fk_by_link_product(PUMA, q_b),

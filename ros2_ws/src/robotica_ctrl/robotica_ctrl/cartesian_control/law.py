@@ -78,8 +78,7 @@ def task_mask(mask: ArrayLike | None, n: int) -> NDArray[np.bool_]:
                              'values [x y z rx ry rz]')
         return np.array([True] * 6 if n >= 6 else [True, True, n >= 3, False, False, False])
     values = np.asarray(mask)
-    if (values.shape != (6,) or not np.isin(values, (0, 1)).all()  # type: ignore[arg-type]
-            or not values.any()):
+    if values.shape != (6,) or not np.isin(values, (0, 1)).all() or not values.any():
         raise ValueError(f'mask must be six 0/1 values [x y z rx ry rz] with at least one 1, '
                          f'got {mask!r}')
     rows = values.astype(bool)
