@@ -200,6 +200,12 @@ def test_save_load_continues_the_learning(tmp_path):
     np.savez(tmp_path / 'other.npz', kp=np.zeros(2))
     with pytest.raises(ValueError, match='not a saved learning'):
         other.load(tmp_path / 'other.npz')
+    saved = dict(np.load(tmp_path / 'learning.npz'))
+    for field, value in (('trial', np.nan), ('trial', 7), ('time', saved['time'][::-1])):
+        np.savez(tmp_path / 'bad.npz', **{**saved, field: value})
+        with pytest.raises(ValueError, match='not a consistent saved learning'):
+            other.load(tmp_path / 'bad.npz')
+    assert other.trial == 4       # unchanged by the refusals
 
 
 def test_reset_keeps_the_learning_and_forget_clears_it():

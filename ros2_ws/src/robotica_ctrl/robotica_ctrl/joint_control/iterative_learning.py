@@ -402,7 +402,7 @@ class IterativeLearningControl(JointControlLaw):
         m = t.size
         if not (t.shape == (m,) and d.shape == (m, n) and (m == 0 or 2 <= m <= self.max_samples)
                 and np.isfinite(t).all() and np.isfinite(d).all() and (np.diff(t) > 0.0).all()
-                and trial.shape == () and trial == int(trial) and trial >= 1
+                and trial.shape == () and np.isfinite(trial) and trial == int(trial) and trial >= 1
                 and errors.shape == (int(trial) - 1, n)):
             raise ValueError(f'{os.fspath(path)!r} is not a consistent saved learning (time '
                              f'{t.shape}, feedforward {d.shape}, trial {trial.tolist()}, '
