@@ -130,7 +130,7 @@ def test_puma_slotine_li_tracks_with_wrong_masses():
 
 
 def test_slotine_li_step_and_reset():
-    """(8.111), (8.123), (8.125), one step at rest: r = Λ e, tau = Y φ̂ + K_v r, φ̂ += dt Γ Yᵀ r."""
+    """One step at rest, (8.111), (8.123), (8.125): r = Λ e, tau = Y φ̂ + K_v r, φ̂' = Γ Yᵀ r."""
     regressor = TwoLinkRegressor(1.0, 1.0, 9.8)
     law = SlotineLi(regressor, [1.0, 2.0], SlotineLiGains(kv=[10.0, 20.0], lam=2.0, gamma=3.0))
     tau = law.update(JointReference([0.1, -0.2]), JointState([0.0, 0.0], [0.0, 0.0]), 0.01)

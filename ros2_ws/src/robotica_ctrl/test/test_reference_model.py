@@ -103,7 +103,7 @@ def test_mrac_with_the_acceleration_term():
 
 
 def test_first_update_and_reset():
-    """The torque is K_p (q_d - q) - K_v q'; the model starts at the measured state; reset forgets n."""
+    """The torque is K_p (q_d - q) - K_v q'; the model starts at the state; reset forgets n."""
     law = ModelReferenceAdaptive(ModelReferenceGains(kp=4.0, kv=1.0))
     assert law.proportional_gain.size == 0
     tau = law.update(JointReference([0.5, -0.5]), JointState([0.1, 0.2], [0.2, -0.1]), 0.01)
