@@ -5,28 +5,43 @@ The ``joint_controller`` node builds its law with :func:`make_joint_law` from it
 (``law`` and ``<law>.<gain>``, described in :data:`JOINT_LAW_PARAMETERS`), and the plan of a
 run (:mod:`robotica_sim.runs.plan`) calls it with the same values before any process starts.
 
-================== ====================================================== =================
-law                class                                                  book
-================== ====================================================== =================
-``pid``            :class:`~robotica_ctrl.joint_control.pid.DecoupledPID` §8.2 (8.10)
-``computed_torque`` :class:`~.computed_torque.ComputedTorque`             (8.27)-(8.37)
-================== ====================================================== =================
+=========================== ======================================================= =============
+law                         class                                                   book
+=========================== ======================================================= =============
+``pid``                     :class:`~robotica_ctrl.joint_control.pid.DecoupledPID`  §8.2 (8.10)
+``computed_torque``         :class:`~.computed_torque.ComputedTorque`              (8.27)-(8.37)
+``adaptive_computed_torque`` :class:`~.adaptive_computed_torque.AdaptiveComputedTorque` (8.95)
+``slotine_li``              :class:`~.slotine_li.SlotineLi`                        (8.123)-(8.125)
+``model_reference``         :class:`~.reference_model.ModelReferenceAdaptive`      (8.75)-(8.78)
+``learning``                :class:`~.iterative_learning.IterativeLearningControl` (8.138)-(8.150)
+=========================== ======================================================= =============
+
+The adaptive laws estimate the link masses of the controller's model (its masses are the
+initial estimates, :class:`~.regressor.LinkMassRegressor`: any arm, not only the 2R).
 """
 import math
 from typing import Any, Mapping
 
 import numpy as np
 from numpy.typing import ArrayLike
+from robotica_ctrl.joint_control.adaptive_computed_torque import (AdaptiveComputedTorque,
+                                                                  AdaptiveComputedTorqueGains)
 from robotica_ctrl.joint_control.computed_torque import ComputedTorque, ComputedTorqueGains
+from robotica_ctrl.joint_control.iterative_learning import IterativeLearningControl, LearningGains
 from robotica_ctrl.joint_control.law import JointControlLaw, per_joint
 from robotica_ctrl.joint_control.pid import DecoupledPID, PIDGains
+from robotica_ctrl.joint_control.reference_model import ModelReferenceAdaptive, ModelReferenceGains
+from robotica_ctrl.joint_control.regressor import LinkMassRegressor
+from robotica_ctrl.joint_control.slotine_li import SlotineLi, SlotineLiGains
 from robotica_kin.dh import as_dyn_model, DHModel
 from robotica_kin.parameter_specs import (named_error, parameter_values, ParameterError,
                                           ParameterSpec)
 
-__all__ = ['FIRST_PERIOD', 'JOINT_LAWS', 'JOINT_LAW_PARAMETERS', 'make_joint_law']
+__all__ = ['FIRST_PERIOD', 'JOINT_LAWS', 'JOINT_LAW_PARAMETERS', 'MAX_PERIOD', 'TRIAL_PERIOD',
+           'make_joint_law']
 
-JOINT_LAWS = ('pid', 'computed_torque')
+JOINT_LAWS = ('pid', 'computed_torque', 'adaptive_computed_torque', 'slotine_li',
+              'model_reference', 'learning')
 JOINT_LAW_PARAMETERS: dict[str, dict[str, ParameterSpec]] = {
     'pid': {
         'kp': ParameterSpec((25.0,), 'K_p [N m/rad] per joint (one value: all joints), book '
@@ -45,6 +60,37 @@ JOINT_LAW_PARAMETERS: dict[str, dict[str, ParameterSpec]] = {
         'ki': ParameterSpec((0.0,), 'K_i [1/s^3] per joint, PID variant (8.36)'),
         'integral_max': ParameterSpec((math.inf,), 'Clamp of the error integral [rad s] '
                                       '(anti-windup)')},
+    'adaptive_computed_torque': {
+        'kp': ParameterSpec((25.0,), 'K_p [1/s^2] per joint, > 0, book (8.30)'),
+        'kv': ParameterSpec((10.0,), 'K_v [1/s] per joint, > 0.5 (the Q of (8.103))'),
+        'gamma': ParameterSpec((1.0,), 'Gamma per adapted link mass, > 0, adaptation law (8.95)'),
+        'acceleration_time_constant': ParameterSpec(
+            (0.0,), "T [s] of the low-pass on q'' (differenced velocities; the law's drawback: "
+            'measured accelerations are noisy); 0: none')},
+    'slotine_li': {
+        'kv': ParameterSpec((10.0,), 'K_v [N m s/rad] per joint, > 0, book (8.123); Ej. 8.8: 10'),
+        'lam': ParameterSpec((2.5,), "Lambda [1/s] per joint, > 0: r = Lambda e + e' (8.111)"),
+        'gamma': ParameterSpec((20.0,), "Gamma per adapted link mass, > 0: phi' = Gamma Y^T r "
+                               '(8.125); Ej. 8.8: 20')},
+    'model_reference': {
+        'natural_frequency': ParameterSpec((5.0,), 'omega_n [rad/s] of the reference model per '
+                                           'joint, > 0 (8.76)'),
+        'damping': ParameterSpec((1.0,), 'delta of the reference model per joint, > 0 (8.76)'),
+        'kp': ParameterSpec((25.0,), 'Initial K_p [N m/rad] per joint'),
+        'kv': ParameterSpec((10.0,), 'Initial K_v [N m s/rad] per joint'),
+        'gamma_p': ParameterSpec((1.0,), 'Adaptation rate of K_p (MIT rule on (8.78))'),
+        'gamma_v': ParameterSpec((1.0,), 'Adaptation rate of K_v (MIT rule on (8.78))'),
+        'w0': ParameterSpec((1.0,), 'Weight of epsilon in J (8.78)'),
+        'w1': ParameterSpec((0.0,), "Weight of epsilon' [s] in J"),
+        'w2': ParameterSpec((0.0,), "Weight of epsilon'' [s^2] in J (uses q'' estimated)"),
+        'acceleration_time_constant': ParameterSpec((0.0,), "T [s] of the low-pass on q''")},
+    'learning': {
+        'kp': ParameterSpec((625.0,), 'K_p [1/s^2] per joint (8.138); Ej. 8.9: 625'),
+        'kv': ParameterSpec((50.0,), 'K_v [1/s] per joint; Ej. 8.9: 50'),
+        'mu': ParameterSpec((3.0,), 'mu of the learning filter (8.150) per joint; refused unless '
+                            'max |G(jw)| < 1; Ej. 8.9: 3'),
+        'max_feedforward': ParameterSpec((math.inf,), 'Bound of the learned |D| [rad/s^2] per '
+                                         'joint, > 0')},
 }
 """The gains of each law by name (the node's parameters ``<law>.<gain>``); each 1 or n values."""
 FIRST_PERIOD = ParameterSpec(1e-3, 'dt [s] of the first step (no previous state yet)', 1e-6, 1.0)
@@ -54,6 +100,10 @@ MAX_PERIOD = ParameterSpec(
     '(its integrals) as a new start', 1e-6, 3600.0)
 """The joint controller's ``max_period``: one stamp gap of 1000 s wound a PID integral up by
 1000 s of error (any gap under the stamp gate's 3600 s was integrated)."""
+TRIAL_PERIOD = ParameterSpec(
+    0.0, 'Length of a trial [s]: the reference restarts every trial_period and a learning law '
+    'learns from each trial (8.150); 0: one trial', 0.0, 1e6)
+"""The joint controller's ``trial_period`` (iterative learning, §8.5)."""
 
 
 def make_joint_law(law: str, model: DHModel | ArrayLike, gains: Mapping[str, Any],
@@ -102,10 +152,27 @@ def make_joint_law(law: str, model: DHModel | ArrayLike, gains: Mapping[str, Any
     robot = as_dyn_model(model)
     try:
         for name, value in values.items():
-            per_joint(name, value, robot.n)
-        if law == 'pid':
-            return DecoupledPID(PIDGains(**values))
-        return ComputedTorque(robot, ComputedTorqueGains(**values), grav,
-                              use_friction=use_friction)
+            if name != 'gamma':   # one per adapted parameter, checked by the law
+                per_joint(name, value, robot.n)
+        return _build(law, robot, values, grav, use_friction)
     except ValueError as err:
         raise named_error(err, values) from None
+
+
+def _build(law: str, robot: DHModel, values: dict, grav: ArrayLike | None,
+           use_friction: bool) -> JointControlLaw:
+    """Return the law ``law`` on ``robot`` with its checked gains ``values``."""
+    if law == 'pid':
+        return DecoupledPID(PIDGains(**values))
+    if law == 'model_reference':
+        return ModelReferenceAdaptive(ModelReferenceGains(**values))
+    if law == 'learning':
+        return IterativeLearningControl(robot, LearningGains(**values), grav,
+                                        use_friction=use_friction)
+    if law in ('adaptive_computed_torque', 'slotine_li'):
+        regressor = LinkMassRegressor(robot, grav)
+        if law == 'slotine_li':
+            return SlotineLi(regressor, regressor.masses, SlotineLiGains(**values))
+        return AdaptiveComputedTorque(regressor, regressor.masses,
+                                      AdaptiveComputedTorqueGains(**values))
+    return ComputedTorque(robot, ComputedTorqueGains(**values), grav, use_friction=use_friction)

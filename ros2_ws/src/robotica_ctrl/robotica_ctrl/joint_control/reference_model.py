@@ -199,6 +199,22 @@ class ModelReferenceAdaptive(JointControlLaw):
         """Return a copy of ε = y - q (n,) of the last update (8.78)."""
         return self._model_error.copy()
 
+    @property
+    def parameter_names(self) -> tuple[str, ...]:
+        """Return the names of :attr:`estimates`: ``joint_<i>.kp`` then ``joint_<i>.kv``."""
+        n = self._kp.size
+        return tuple(f'joint_{i + 1}.{gain}' for gain in ('kp', 'kv') for i in range(n))
+
+    @property
+    def estimates(self) -> NDArray[np.float64]:
+        """Return the adapted gains [K_p; K_v] (2n,), the law's adapted parameters."""
+        return np.concatenate([self._kp, self._kv])
+
+    @property
+    def adaptation_error(self) -> NDArray[np.float64]:
+        """Return ε = y - q (n,), the error the adaptation minimises (8.78)."""
+        return self.model_error
+
     def update(self, reference: JointReference, state: JointState,
                dt: float) -> NDArray[np.float64]:
         """

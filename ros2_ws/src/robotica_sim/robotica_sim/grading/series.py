@@ -383,14 +383,17 @@ def _joint_series(role: str, msgs: list[tuple[Any, int]]) -> Series:
     return Series(t, columns, tuple(names))
 
 
-def _joint_reference(msg: Any, states: Series | None) -> Series | None:
+def _joint_reference(msg: Any, states: Series | None,
+                     trial_period: float = 0.0) -> Series | None:
     """
     Return the joint reference at the joint states' times, or None without one of the two.
 
     The trajectory is interpolated as the joint controller does it
     (:func:`robotica_ctrl.trajectory.sampled_trajectory.trajectory_from_points`); stamped 0 it
-    starts at the first joint state, else at its stamp. None too for a trajectory that does not
-    name the states' joints or is not one (the controller refused it as well).
+    starts at the first joint state, else at its stamp; with a ``trial_period`` [s] > 0 it
+    restarts every trial (iterative learning), as the controller restarts it. None too for a
+    trajectory that does not name the states' joints or is not one (the controller refused it
+    as well).
     """
     if msg is None or states is None or len(states) == 0:
         return None
@@ -400,9 +403,19 @@ def _joint_reference(msg: Any, states: Series | None) -> Series | None:
         return None
     stamp = msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9
     start = stamp if stamp > 0.0 else float(states.t[0])
-    samples = [trajectory.sample(t - start) for t in states.t]
+    elapsed = states.t - start
+    if trial_period > 0.0:
+        elapsed = elapsed - np.floor(elapsed / trial_period + 1e-9) * trial_period
+    samples = [trajectory.sample(t) for t in elapsed]
     return Series(states.t, {'position': np.array([s.q_d for s in samples]),
                              'velocity': np.array([s.qd_d for s in samples])}, states.names)
+
+
+def _trial_period(scenario: dict | None) -> float:
+    """Return the scenario's ``controller.trial_period`` [s], 0 when it has none."""
+    controller = (scenario or {}).get('controller')
+    value = controller.get('trial_period', 0.0) if isinstance(controller, dict) else 0.0
+    return float(value) if isinstance(value, (int, float)) and value > 0.0 else 0.0
 
 
 def _scan_series(msgs: list[tuple[Any, int]]) -> Series:
@@ -558,7 +571,8 @@ def load_run(bag: str | Path, topics: Iterable[str] | None = None) -> RunSeries:
         cmd=series['cmd_vel'] if series['cmd_vel'] is not None else series['vehicle_command'],
         tracking_error=series['tracking_error'], imu=series['imu'], compass=series['compass'],
         gps=series['gps'], joint_states=joints['joint_states'], controller=joints['controller'],
-        reference=_joint_reference(decoded.get('trajectory'), joints['joint_states']),
+        reference=_joint_reference(decoded.get('trajectory'), joints['joint_states'],
+                                   _trial_period(record.scenario)),
         torques=joints['torques'], status=status, msgtypes=msgtypes, ignored=ignored,
         bumper=series['bumper'], scans=_scan_series(scan_msgs) if scan_msgs else None,
         ranges={topic: _scalar_series(rows, range_receive[topic], _RANGE_COLUMNS)

@@ -4,7 +4,14 @@ Arm simulator node: a manipulator's dynamics integrated at a fixed step; it owns
 The plant is :class:`~robotica_sim.simulation.arm.ArmSimulation` (Pinocchio ABA, RK4, book
 §5.7): the robot ``robot`` by name or a HEMERO ``dyn_table``, with friction, torque saturation
 ``tau_max``, joint stops, ``unmodelled_viscous`` friction the controller does not know (App. A)
-and a payload grasped at ``payload.time`` (Ej. 8.4).
+and a payload grasped at ``payload.time`` (Ej. 8.4). With ``trial_period`` T > 0 the arm is put
+back at its initial state every T seconds of simulated time: the trials of iterative learning
+(§8.5), each from the same start, in one run. With ``environment.stiffness`` K_e > 0 the end
+effector presses on a compliant plane (book §8.7, (8.164)-(8.166): ψ = K_e δ n, τ_e = Jᵀψ;
+:mod:`robotica_sim.simulation.compliant_environment`) and ``contact_wrench``
+(geometry_msgs/WrenchStamped, frame ``tool0``) carries, every step with the joint states, the
+wrench the environment applies to the end effector: what an ideal wrist F/T sensor reads, the
+input of ``ft_sensor_emulator``.
 
 Subscribes ``joint_torques`` (std_msgs/Float64MultiArray, one torque [N m] or force [N] per
 joint in ``joint_names`` order, as ros2_controllers' effort controllers take them). Publishes
@@ -17,6 +24,7 @@ a refused one: wrong size, not finite, beyond ``robotica_kin.bounds.MAX_FORCE_TO
 joint brakes hold the arm (velocities zero, positions held); every change of that condition is
 logged.
 """
+from geometry_msgs.msg import WrenchStamped
 import numpy as np
 from rclpy.experimental import EventsExecutor
 from rclpy.parameter import Parameter
@@ -28,6 +36,7 @@ from robotica_kin.ros.parameters import declare, declare_specs
 from robotica_kin.ros.qos import COMMAND_QOS, STREAM_PUB_QOS
 from robotica_sim.nodes.stepped_simulator import SteppedSimulatorNode
 from robotica_sim.simulation.arm import arm_simulation, ARM_SIMULATOR_PARAMETERS
+from robotica_sim.simulation.compliant_environment import compliant_plane, ENVIRONMENT_PARAMETERS
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64MultiArray
 
@@ -51,7 +60,14 @@ class ArmSimulatorNode(SteppedSimulatorNode):
                  'Viscous friction [N m s] per joint unknown to the controller (App. A: 0.1 on '
                  'joint 1); default none')):
             values[name] = declare(self, name, default, description, read_only=True)
-        self._sim = arm_simulation(self._robot, values, self.step_period)
+        environment = compliant_plane(declare_specs(self, ENVIRONMENT_PARAMETERS))
+        self._sim = arm_simulation(self._robot, values, self.step_period, environment)
+        self._start = (self._sim.q.copy(), self._sim.qd.copy())
+        self._trial_period = declare(
+            self, 'trial_period', 0.0, 'Put the arm back at its initial state every trial_period '
+            '[s] (trials of iterative learning, §8.5); 0: never', low=0.0, high=1e6,
+            read_only=True)
+        self._next_trial = self._trial_period
         self._payload_mass = values['payload.mass']
         self._payload_com = values['payload.com']
         self._payload_time = values['payload.time']
@@ -64,6 +80,8 @@ class ArmSimulatorNode(SteppedSimulatorNode):
         self._braking = False
         self._payload_pending = self._payload_mass > 0.0
         self._joints_pub = self.create_publisher(JointState, 'joint_states', STREAM_PUB_QOS)
+        self._wrench_pub = None if environment is None else self.create_publisher(
+            WrenchStamped, 'contact_wrench', STREAM_PUB_QOS)
         self.create_subscription(Float64MultiArray, 'joint_torques', self._on_torques,
                                  COMMAND_QOS)
         self.get_logger().info(f'robot {self._robot.name!r}, {n} joints {self._names}, '
@@ -72,7 +90,8 @@ class ArmSimulatorNode(SteppedSimulatorNode):
     @property
     def publishers_to_flush(self) -> list:
         """Return the clock, status and joint-state publishers."""
-        return super().publishers_to_flush + [self._joints_pub]
+        return super().publishers_to_flush + [self._joints_pub] + (
+            [] if self._wrench_pub is None else [self._wrench_pub])
 
     # -- callbacks: store and convert only ------------------------------------------------
     def _on_torques(self, msg: Float64MultiArray) -> None:
@@ -96,6 +115,14 @@ class ArmSimulatorNode(SteppedSimulatorNode):
         msg.header.stamp = seconds_to_stamp(t)
         msg.header.frame_id = self._frame
         self._joints_pub.publish(msg)
+        if self._wrench_pub is not None:
+            wrench = WrenchStamped()
+            wrench.header.stamp = msg.header.stamp
+            wrench.header.frame_id = 'tool0'
+            f = self._sim.contact_wrench().on_tool()
+            w = wrench.wrench
+            w.force.x, w.force.y, w.force.z, w.torque.x, w.torque.y, w.torque.z = f.tolist()
+            self._wrench_pub.publish(wrench)
 
     def step_plant(self) -> None:
         """Advance the arm one step with the newest torque, or with the brakes on."""
@@ -117,6 +144,11 @@ class ArmSimulatorNode(SteppedSimulatorNode):
             self._sim.step_braked()
         else:
             self._sim.step(self._torque)
+        if 0.0 < self._next_trial <= t + self.step_period + 1e-9:
+            self._sim.reset(*self._start)
+            self._next_trial += self._trial_period
+            self.get_logger().info(f'trial ends at t = {t + self.step_period:.3f} s: arm back at '
+                                   'its initial state')
 
 
 def main(args=None) -> None:

@@ -23,6 +23,8 @@ from typing import Any, Callable, Mapping, Optional
 
 import numpy as np
 from robotica_ctrl.joint_control.control_laws import FIRST_PERIOD, make_joint_law
+from robotica_ctrl.joint_control.task_laws import (FORCE_LAWS, TASK_LAWS, TASK_PARAMETERS,
+                                                   TaskSpaceControl)
 from robotica_ctrl.mobile import path_shapes
 from robotica_ctrl.mobile.reactive_navigation import NAVIGATOR_PARAMETERS, navigator_params
 from robotica_ctrl.mobile.tracking_laws import (check_gains, law_for_path, LAW_PARAMETERS,
@@ -31,13 +33,14 @@ from robotica_ctrl.trajectory.joint_reference import reference_samples
 from robotica_kin.dh import as_dyn_model, DHModel
 from robotica_kin.mobile.odometry_fusion import ODOMETRY_PARAMETERS
 from robotica_kin.mobile.vehicles import GEOMETRY_PARAMETERS, STEERED_TYPES, vehicle_kinematics
-from robotica_kin.parameter_specs import check_parameters, ParameterError
-from robotica_kin.robots import puma560, robot_by_name, two_link_arm
+from robotica_kin.parameter_specs import check_parameters, ParameterError, ParameterSpec
+from robotica_kin.robots import pp_robot, puma560, robot_by_name, two_link_arm
 from robotica_kin.world.world_section import world_from_mapping
 from robotica_sim.runs.roles import Role, role_contract, ROLE_SECTIONS, topic_name
 from robotica_sim.runs.scenario import ExternalSpec, Scenario, ScenarioError
 from robotica_sim.sensors.compass import compass_params
 from robotica_sim.sensors.encoder import encoder_params
+from robotica_sim.sensors.force_torque import FT_PARAMETERS, ft_sensor_params
 from robotica_sim.sensors.gps import gps_configuration, gps_params, GPS_TERMS
 from robotica_sim.sensors.gyro import gyro_params, GYRO_TERMS
 from robotica_sim.sensors.infrared import INFRARED_MOUNTS, INFRARED_PARAMETERS, infrared_params
@@ -45,6 +48,7 @@ from robotica_sim.sensors.laser import LASER_PARAMETERS, laser_params
 from robotica_sim.sensors.range_beams import check_mounts
 from robotica_sim.sensors.sonar import SONAR_MOUNTS, SONAR_PARAMETERS, sonar_params
 from robotica_sim.simulation.arm import arm_simulation
+from robotica_sim.simulation.compliant_environment import compliant_plane, ENVIRONMENT_PARAMETERS
 from robotica_sim.simulation.vehicle import vehicle_simulation
 
 PATH_SHAPES = ('straight_line', 'circle', 'rounded_rectangle', 'figure_eight', 'polyline',
@@ -76,6 +80,15 @@ SENSOR_TOPICS = {'gyro': ('/imu/data',),
                  'gps': ('/gps/fix',)}
 ARM_RECORDED_TOPICS = ('/clock', '/joint_states', '/joint_torques', CONTROLLER_STATE_TOPIC,
                        TRAJECTORY_TOPIC, STATUS_TOPIC, '/rosout', *TF_TOPICS, MARKERS_TOPIC)
+LAW_TOPICS = {**{law: ('/joint_controller/adaptation',)
+                 for law in ('adaptive_computed_torque', 'slotine_li', 'model_reference')},
+              'learning': ('/joint_controller/learning_trials',),
+              **{law: ('/joint_controller/force_control',) for law in FORCE_LAWS},
+              **{law: ('/joint_controller/cartesian_control',)
+                 for law in TASK_LAWS if law not in FORCE_LAWS}}
+CONTACT_WRENCH_TOPIC = '/contact_wrench'
+FT_SENSOR_TOPICS = ('/ft_sensor/wrench', '/ft_sensor/gauges')
+"""The telemetry of a joint controller's law (robotica_ctrl.nodes.law_telemetry), recorded."""
 VISUALISATION_TOPICS = (*TF_TOPICS, MARKERS_TOPIC)
 VISUALISATION_NODES = ('state_publisher', 'markers')
 """What a scenario's ``visualisation: false`` leaves out of a run: topics and executables."""
@@ -213,7 +226,11 @@ def recorded_topics(scenario: Scenario) -> tuple[str, ...]:
         return tuple(topic for topic in recorded_topics(replace(scenario, visualisation=True))
                      if topic not in VISUALISATION_TOPICS)
     if scenario.is_manipulator:
-        return ARM_RECORDED_TOPICS
+        task_law = scenario.controller.law in TASK_LAWS   # no joint trajectory
+        return (tuple(t for t in ARM_RECORDED_TOPICS if not (task_law and t == TRAJECTORY_TOPIC))
+                + LAW_TOPICS.get(scenario.controller.law, ())
+                + ((CONTACT_WRENCH_TOPIC,) if scenario.arm.environment else ())
+                + (FT_SENSOR_TOPICS if scenario.arm.ft_sensor else ()))
     topics = list(RECORDED_TOPICS)
     if scenario.robot.type in STEERED_TYPES:
         topics[topics.index('/cmd_vel')] = '/vehicle_command'
@@ -382,6 +399,8 @@ def _floats(values) -> list[float]:
 def _arm_parameters(scenario: Scenario) -> tuple[dict, dict, list[str]]:
     """Return the plant's and the controller's model parameters and the joint names."""
     arm = scenario.arm
+    if arm.model == 'pp_robot':   # Ej. 8.10's masses; by name, for its tool frame
+        return {'robot': 'pp_robot'}, {'robot': 'pp_robot'}, list(pp_robot().joint_names)
     if arm.model == 'puma560':
         # The plant is the real arm: Craig's stops, where respect_limits stops its joints. The
         # controller's model is HEMERO's dhp560, which has no limits (robots.puma560).
@@ -454,9 +473,22 @@ def _plan_arm(scenario: Scenario) -> list[NodeSpec]:
     for key in ('initial_positions', 'initial_velocities', 'tau_max', 'unmodelled_viscous'):
         if getattr(arm, key):
             simulator[key] = _floats(getattr(arm, key))
+    trials = {'trial_period': scenario.controller.trial_period} \
+        if scenario.controller.trial_period > 0.0 else {}
+    simulator.update(trials)
     if arm.payload.mass > 0.0:
         simulator.update({'payload.mass': arm.payload.mass, 'payload.com': _floats(
             arm.payload.com), 'payload.time': arm.payload.time})
+    environment = _dotted('environment', arm.environment, where, 'arm.', ENVIRONMENT_PARAMETERS)
+    simulator.update(environment)
+    _node_check(where, 'arm', {name: f'arm.{name}' for name in environment},
+                lambda: compliant_plane(simulator))
+    ft_sensor = _dotted('', arm.ft_sensor, where, 'arm.ft_sensor.', FT_PARAMETERS)
+    if arm.ft_sensor:
+        _node_check(where, 'arm.ft_sensor', {k: f'arm.ft_sensor.{k}' for k in ft_sensor},
+                    lambda: ft_sensor_params(ft_sensor))
+    if law in TASK_LAWS:
+        return _plan_task_arm(scenario, plant, model, gains, simulator, ft_sensor)
     reference = _reference_parameters(scenario, joints)
     _node_check(where, 'reference', {'duration': 'duration', 'generator': 'reference.generator',
                                      **{node: f'reference.{key}'
@@ -481,13 +513,76 @@ def _plan_arm(scenario: Scenario) -> list[NodeSpec]:
             'law': law, **model, 'gravity': _floats(arm.gravity),
             'use_friction': scenario.controller.use_friction,
             'first_period': scenario.step_period, 'wait_for_trajectory': True,
-            **gains}, use_sim_time=False),
+            **trials, **gains}, use_sim_time=False),
         NodeSpec('robotica_sim', 'arm_simulator', 'simulator', simulator, use_sim_time=False),
         NodeSpec('robotica_kin', 'state_publisher', 'state_publisher',
                  {**_arm_description(plant), **STATE_PUBLISHER_INPUT}, use_sim_time=False),
         NodeSpec('robotica_sim', 'markers', 'markers', _arm_description(plant),
                  use_sim_time=False),
     ]
+
+
+def _dotted(prefix: str, values: Mapping[str, Any], where: str, key: str,
+            specs: Mapping[str, ParameterSpec]) -> dict[str, Any]:
+    """
+    Return a scenario mapping as node parameters: nested keys joined by dots after ``prefix``.
+
+    A number or a list of numbers becomes what the node's parameter (its spec in ``specs``) is:
+    a list of floats, a float or an integer; booleans, strings and unknown keys (the node
+    refuses those) pass as they are. ``key`` prefixes the scenario key in messages.
+    """
+    out: dict[str, Any] = {}
+    for name, value in values.items():
+        dotted = f'{prefix}.{name}' if prefix else str(name)
+        spec = specs.get(dotted)
+        if isinstance(value, dict):
+            out.update(_dotted(dotted, value, where, f'{key}{name}.', specs))
+        elif spec is None or isinstance(value, (bool, str)) or isinstance(spec.default, bool):
+            out[dotted] = value
+        elif isinstance(spec.default, int):
+            if isinstance(value, bool) or not isinstance(value, int):
+                raise ScenarioError(f'{where}: {key}{name} must be an integer, got {value!r}')
+            out[dotted] = value
+        else:
+            numbers = _numbers(value, f'{where}: {key}{name}')
+            out[dotted] = numbers if isinstance(spec.default, tuple) else numbers[0]
+    return out
+
+
+def _plan_task_arm(scenario: Scenario, plant: dict, model: dict, gains: dict, simulator: dict,
+                   ft_sensor: dict) -> list[NodeSpec]:
+    """Return the nodes of an arm run whose controller runs a task-space law (no trajectory)."""
+    where = scenario.source or scenario.name
+    arm, controller, law = scenario.arm, scenario.controller, scenario.controller.law
+    task = {**_dotted('task', controller.task, where, 'controller.task.', TASK_PARAMETERS),
+            **_dotted('cartesian', controller.cartesian, where, 'controller.cartesian.',
+                      TASK_PARAMETERS)}
+    if law in FORCE_LAWS and not arm.environment:
+        raise ScenarioError(f'{where}: controller.law {law} presses on a surface: give '
+                            'arm.environment (stiffness, point, normal)')
+    keys = {**{f'{law}.{k}': f'controller.{k}' for k in controller.gains},
+            **{name: f'controller.{name}' for name in task}}
+    _node_check(where, 'controller', keys, lambda: TaskSpaceControl(
+        law, _dynamic_robot(model), {k.removeprefix(f'{law}.'): v for k, v in gains.items()},
+        task, arm.gravity, use_friction=controller.use_friction, step=scenario.step_period))
+    _node_check(where, 'arm', ARM_KEYS,
+                lambda: arm_simulation(_dynamic_robot(plant), simulator, scenario.step_period))
+    nodes = [
+        NodeSpec('robotica_ctrl', 'joint_controller', 'joint_controller', {
+            'law': law, **model, 'gravity': _floats(arm.gravity),
+            'use_friction': controller.use_friction, 'first_period': scenario.step_period,
+            **gains, **task}, use_sim_time=False,
+            remappings={'contact_wrench': FT_SENSOR_TOPICS[0]} if arm.ft_sensor else {}),
+        NodeSpec('robotica_sim', 'arm_simulator', 'simulator', simulator, use_sim_time=False),
+        NodeSpec('robotica_kin', 'state_publisher', 'state_publisher',
+                 {**_arm_description(plant), **STATE_PUBLISHER_INPUT}, use_sim_time=False),
+        NodeSpec('robotica_sim', 'markers', 'markers', _arm_description(plant),
+                 use_sim_time=False),
+    ]
+    if arm.ft_sensor:
+        nodes.insert(0, NodeSpec('robotica_sim', 'ft_sensor_emulator', 'ft_sensor_emulator',
+                                 {'seed': scenario.seed, **ft_sensor}, use_sim_time=False))
+    return nodes
 
 
 def _arm_description(plant: dict) -> dict:

@@ -218,7 +218,7 @@ class NavigatorSpec:
     gains: dict = field(default_factory=dict)
 
 
-ARM_MODELS = ('puma560', 'two_link_arm')
+ARM_MODELS = ('puma560', 'two_link_arm', 'pp_robot')
 MIN_STEP_PERIOD = 1e-4              # [s] simulated
 MAX_STEPS = 10_000_000              # simulation steps of a run (duration / step_period)
 SEED_MAX = (2**31 - 1) // 10 - 1
@@ -253,6 +253,8 @@ class ArmSpec:
     unmodelled_viscous: tuple[float, ...] = ()     # [N m s], 1 or n values (App. A)
     respect_limits: bool = True
     payload: PayloadSpec = PayloadSpec()
+    environment: dict = field(default_factory=dict)   # a compliant plane (§8.7): stiffness, ...
+    ft_sensor: dict = field(default_factory=dict)     # a wrist F/T sensor (§7.6): preset, ...
 
 
 @dataclass(frozen=True)
@@ -270,6 +272,9 @@ class ControllerSpec:
     law: str = 'computed_torque'
     model_masses: tuple[float, ...] = ()           # two_link_arm estimate (m̂1, m̂2); () exact
     use_friction: bool = True
+    trial_period: float = 0.0                      # [s] trials of learning (§8.5); 0: one
+    task: dict = field(default_factory=dict)       # force laws: task frame and reference
+    cartesian: dict = field(default_factory=dict)  # Cartesian laws: goal and duration
     gains: dict = field(default_factory=dict)
     external: Optional[ExternalSpec] = None        # a user's joint controller instead
 
@@ -325,11 +330,15 @@ class Scenario:
                 and min(self.arm.masses) >= 0.0 and min(self.arm.lengths) > 0.0),
              'arm.masses and arm.lengths: two_link_arm needs [m1, m2] >= 0 kg and [l1, l2] > 0 m'),
             (self.arm.model == 'two_link_arm' or not (self.arm.masses or self.arm.lengths),
-             'arm.masses and arm.lengths are for two_link_arm only'),
+             "arm.masses and arm.lengths are for two_link_arm only (pp_robot is Ej. 8.10's, "
+             'm1 = 2 kg, m2 = 0.35 kg)'),
             (len(self.arm.gravity) == 3, 'arm.gravity must be 3 values [m/s^2]'),
             (self.arm.payload.mass >= 0.0 and len(self.arm.payload.com) == 3
              and self.arm.payload.time >= 0.0,
              'arm.payload: mass >= 0 kg, com [x, y, z] m, time >= 0 s'),
+            (self.controller.trial_period == 0.0
+             or self.step_period <= self.controller.trial_period <= self.duration,
+             'controller.trial_period must be 0 (one trial) or in [step_period, duration] s'),
             (len(self.controller.model_masses) in (0, 2) and (
                 not self.controller.model_masses or self.arm.model == 'two_link_arm'),
              'controller.model_masses: [m1, m2] of a two_link_arm model'),
@@ -468,6 +477,7 @@ def _normalise(data: dict) -> dict:
     for section, fixed, free in (('tracker', ('law', 'external'), 'gains'),
                                  ('reference', ('generator',), 'args'),
                                  ('controller', ('law', 'model_masses', 'use_friction',
+                                                 'trial_period', 'task', 'cartesian',
                                                  'external'), 'gains'),
                                  ('navigator', ('behaviour',), 'gains')):
         if isinstance(data.get(section), dict):

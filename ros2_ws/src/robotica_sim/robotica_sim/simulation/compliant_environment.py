@@ -32,8 +32,24 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from robotica_kin.finite import finite_real
+from robotica_kin.parameter_specs import named_error, parameter_values, ParameterSpec
 
-__all__ = ['CompliantPlane', 'ContactWrench']
+__all__ = ['CompliantPlane', 'ContactWrench', 'ENVIRONMENT_PARAMETERS', 'compliant_plane']
+
+ENVIRONMENT_PARAMETERS: dict[str, ParameterSpec] = {
+    'environment.stiffness': ParameterSpec(
+        0.0, 'K_e [N/m] of a compliant plane the end effector presses on, book (8.164) (Ej. 8.10: '
+        '1200); 0: no environment', 0.0, 1e9),
+    'environment.point': ParameterSpec((0.0, 0.0, 0.0), 'x_e: a point of the undeformed plane '
+                                       '[m], base frame {0}'),
+    'environment.normal': ParameterSpec((1.0, 0.0, 0.0), 'Its normal, pointing into the '
+                                        'environment, base frame {0} (any length)'),
+    'environment.damping': ParameterSpec(0.0, 'B_e [N s/m] along the normal (never pulls)',
+                                         0.0, 1e9),
+    'environment.friction': ParameterSpec(0.0, 'Coulomb coefficient along the tangential '
+                                          'velocity; 0: frictionless', 0.0, 10.0),
+}
+"""The arm simulator's parameters of its environment, by name: :func:`compliant_plane`."""
 
 
 def _point(name: str, value: ArrayLike) -> NDArray[np.float64]:
@@ -176,3 +192,32 @@ class ContactWrench:
         array([-0., -0., -3., -0., -0., -0.])
         """
         return -np.concatenate([self.force_tool, self.torque_tool])
+
+
+def compliant_plane(parameters: dict) -> CompliantPlane | None:
+    """
+    Return the plane of the arm simulator's ``environment.*`` parameters, None without one.
+
+    Missing values take their defaults; ``environment.stiffness`` 0 means no environment.
+
+    Raises
+    ------
+    robotica_kin.parameter_specs.ParameterError
+        For a value out of its range or that the plane refuses (a zero normal), by name.
+
+    Examples
+    --------
+    >>> compliant_plane({}) is None
+    True
+    >>> compliant_plane({'environment.stiffness': 1200.0}).stiffness
+    1200.0
+
+    """
+    values = {name.removeprefix('environment.'): value
+              for name, value in parameter_values(ENVIRONMENT_PARAMETERS, parameters).items()}
+    if values['stiffness'] == 0.0:
+        return None
+    try:
+        return CompliantPlane(**values)
+    except ValueError as err:
+        raise named_error(err, tuple(values), 'environment.') from None

@@ -60,7 +60,8 @@ CASES = [
         'acceleration': [1, 1, 1]}}, 'reference.acceleration must hold 1 or 2 values, got 3'),
     # joint_controller (robotica_ctrl.joint_control.control_laws)
     ('unknown joint law', 'ej8_2', {'controller.law': 'lqr'},
-     "controller.law must be one of ('pid', 'computed_torque'), got 'lqr'"),
+     "controller.law must be one of ('pid', 'computed_torque', 'adaptive_computed_torque', "
+     "'slotine_li', 'model_reference', 'learning'), got 'lqr'"),
     ('negative kp', 'ej8_2', {'controller.kp': -1}, 'controller.kp must be >= 0, got -1.0'),
     ('kp of 3 joints', 'ej8_2', {'controller.kp': [1, 2, 3]},
      'controller.kp must be a scalar or have shape (2,)'),
