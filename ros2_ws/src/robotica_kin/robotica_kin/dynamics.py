@@ -23,21 +23,27 @@ is not finite (a robot of absurd mass or inertia): q' = 1e200 once gave NaN torq
 
 ``dyn`` is a :class:`~robotica_kin.dh.DHModel` that carries a ``dyn`` table (e.g.
 ``robots.puma560()``), a raw HEMERO table of 20 columns (book §A.3), or the
-:class:`~robotica_kin.pinocchio_model.PinocchioArm` of such a robot. Given a robot, a function
-builds its Pinocchio model and scratch for the call; a caller that computes often keeps an arm
-(``pinocchio_arm(robot)``) and a ``data`` of its own (``arm.model.createData()``, one per
-thread) and passes both. A gravity other than the model's is applied to a copy of the model:
-the arm's own is shared, never changed.
+:class:`~robotica_kin.pinocchio_model.PinocchioArm` of such a robot. A robot object gets its
+arm from :func:`~robotica_kin.pinocchio_model.dyn_arm`, built on first use and kept while the
+robot lives (a raw table: built for the call). Each arm keeps, per thread, a scratch ``Data`` of
+its own; a caller may pass its own ``data`` (``arm.model.createData()``), checked on its first
+use. A gravity other than the model's is applied to a copy of the model: the arm's own is
+shared, never changed.
 
-One configuration of (n,) float64 vectors with the default gravity takes the fast route: the
-arm's friction law and gravity-free model are built once and kept by the arm, each vector is
-checked by one dot product (:func:`_fast_vector`), the caller's ``data`` by its sizes, and the
-result by one dot product; PUMA 560, ``rne`` 3-4 µs against 0.9 µs of a bare ``pin.rnea``
-(``robotica bench kin``). Anything else (a batch, another gravity, a value the dot product
-cannot clear) takes the full checks, which decide and raise.
+One configuration of (n,) vectors with the default gravity takes the fast route when the arm's
+:attr:`~robotica_kin.pinocchio_model.PinocchioArm.torque_bound` is far below overflow (no joint
+values within the bounds can then make a result overflow, so results go unchecked): each vector
+is cleared by the Euclidean norm of its values, ``math.hypot(*x.tolist()) <= bound`` (NaN and
+inf fail it; every ``|x_i|`` is then within the bound; 0.13 µs for six values), and Pinocchio
+itself refuses a size or dtype not its own. Anything else (a batch, a list, another gravity, a
+value the norm cannot clear, a robot of absurd mass) takes the full route, whose checks decide
+and raise. PUMA 560, the arm and a ``data`` kept: 1.5-2× the bare Pinocchio call; the floor in
+Python, one call and the norm of each vector, is 1.5-1.7× (``robotica bench kin``,
+docs/benchmarks.md).
 """
 
 from dataclasses import dataclass
+import math
 from typing import Any, Callable
 
 import numpy as np
@@ -48,7 +54,7 @@ from robotica_kin.bounds import (bounded_array, MAX_JOINT_ACCELERATION, MAX_JOIN
 from robotica_kin.dh import as_dyn_model, DHModel
 from robotica_kin.finite import all_finite
 from robotica_kin.joint_friction import JointFriction
-from robotica_kin.pinocchio_model import data_for, dyn_arm, PinocchioArm
+from robotica_kin.pinocchio_model import dyn_arm, PinocchioArm
 from scipy.integrate import solve_ivp
 
 __all__ = ['DEFAULT_GRAVITY', 'FdynResult', 'coriolis', 'coriolis_matrix', 'fdyn', 'friction',
@@ -59,39 +65,30 @@ DEFAULT_GRAVITY = (0.0, 0.0, -9.81)
 
 _BOUNDS = {'q': MAX_JOINT_POSITION, 'q0': MAX_JOINT_POSITION, 'qd': MAX_JOINT_VELOCITY,
            'qd0': MAX_JOINT_VELOCITY, 'qdd': MAX_JOINT_ACCELERATION}
-# x·x below (bound / 2)²: every element of x is finite and within half its bound.
-_SAFE_Q = (0.5 * MAX_JOINT_POSITION) ** 2
-_SAFE_QD = (0.5 * MAX_JOINT_VELOCITY) ** 2
-_SAFE_QDD = (0.5 * MAX_JOINT_ACCELERATION) ** 2
+_FLOAT64 = np.dtype(np.float64)
+_SAFE_TORQUE = 1e150   # [N m] a torque_bound this far below overflow (1.8e308): results finite
+_REFUSED = (TypeError, ValueError)   # what Pinocchio raises for a wrong size or dtype
 
 
-def _fast_vector(value: ArrayLike, n: int, safe: float) -> NDArray[np.float64] | None:
+def _plain(q: object, qd: object = None, qdd: object = None) -> bool:
     """
-    Return ``value`` as a float64 vector (n,) when one dot product clears it, else None.
+    Return True when q, qd and qdd (those not None) are 1-d ndarrays within their bounds.
 
-    ``x·x <= safe`` (``(bound / 2)²``) holds only when every element is finite and within half
-    its bound: NaN, inf and an overflow fail it. None sends the caller to :func:`_vectors`,
-    whose full checks decide, and raise, for everything else.
+    ``math.hypot(*x.tolist())``, the norm of x's values (0.13 µs for six, half of ``x.dot(x)``),
+    is NaN or inf when an element is, never overflows, and bounds every ``|x_i|``: within
+    ``MAX_JOINT_POSITION`` for q, ``MAX_JOINT_VELOCITY`` for qd, ``MAX_JOINT_ACCELERATION``
+    for qdd. The size and the dtype are left to the Pinocchio call that follows: it refuses
+    others (:data:`_REFUSED`). False, or a refusal, sends the caller to :func:`_vectors`, whose
+    full checks decide and raise (a list, a batch, a value beyond its bound, a wrong size).
     """
-    x = np.asarray(value, dtype=np.float64)
-    if x.shape == (n,) and x.dot(x) <= safe:
-        return x
-    return None
-
-
-def _scratch(arm: PinocchioArm, data: Any) -> Any:
-    """
-    Return the caller's ``data`` when its sizes are the arm model's, else :func:`data_for`'s.
-
-    The dynamics algorithms use the per-joint and per-velocity buffers only, so the sizes of
-    those (0.6 µs) stand for ``model.check(data)`` (0.9 µs); anything else goes to
-    :func:`data_for`, which creates a Data for None and raises for a wrong one.
-    """
-    model = arm.model
-    if (type(data) is pin.Data and len(data.oMi) == model.njoints
-            and data.tau.shape == (model.nv,)):
-        return data
-    return data_for(arm, data)
+    try:
+        return ((q is None or math.hypot(*q.tolist()) <= MAX_JOINT_POSITION)  # type: ignore
+                and (qd is None
+                     or math.hypot(*qd.tolist()) <= MAX_JOINT_VELOCITY)  # type: ignore
+                and (qdd is None
+                     or math.hypot(*qdd.tolist()) <= MAX_JOINT_ACCELERATION))  # type: ignore
+    except (AttributeError, TypeError):   # not an ndarray; a 0-d or 2-d one
+        return False
 
 
 def _finite(result: NDArray[np.float64], name: str) -> NDArray[np.float64]:
@@ -129,7 +126,7 @@ def _model_and_data(arm: PinocchioArm, grav: ArrayLike | None, data: Any) -> tup
     if not np.array_equal(model.gravity.linear, g):
         model = pin.Model(model)
         set_gravity(model, g)
-    return model, data_for(arm, data)
+    return model, arm.scratch(data)
 
 
 def _vectors(robot: DHModel, **arrays: ArrayLike) -> tuple[NDArray[np.float64], ...]:
@@ -154,7 +151,7 @@ def _single(result: NDArray[np.float64], like: ArrayLike, name: str) -> NDArray[
     return result[0] if np.ndim(like) == 1 else result
 
 
-def friction(dyn: DHModel | ArrayLike, qd: ArrayLike) -> NDArray[np.float64]:
+def friction(dyn: DHModel | PinocchioArm | ArrayLike, qd: ArrayLike) -> NDArray[np.float64]:
     """
     Return the joint friction torques F(q') [N m or N] of the ``dyn`` table (book (5.84)-(5.86)).
 
@@ -169,9 +166,17 @@ def friction(dyn: DHModel | ArrayLike, qd: ArrayLike) -> NDArray[np.float64]:
     (array([6.2]), array([-6.2]))
 
     """
-    robot = as_dyn_model(dyn)
-    (v,) = _vectors(robot, qd=qd)
-    return _single(JointFriction(robot)(v), qd, 'friction')
+    if not isinstance(dyn, (DHModel, PinocchioArm)):   # a raw table: no arm to keep
+        robot = as_dyn_model(dyn)
+        (v,) = _vectors(robot, qd=qd)
+        return _single(JointFriction(robot)(v), qd, 'friction')
+    arm = dyn if type(dyn) is PinocchioArm else dyn_arm(dyn)
+    law = arm.friction   # ValueError for a robot without dynamics
+    if (arm.torque_bound < _SAFE_TORQUE and type(qd) is np.ndarray
+            and qd.shape == law.viscous.shape and qd.dtype is _FLOAT64 and _plain(None, qd)):
+        return law(qd)   # no Pinocchio call here to refuse another size or dtype: checked
+    (v,) = _vectors(arm.robot, qd=qd)
+    return _single(law(v), qd, 'friction')
 
 
 def rne(dyn: DHModel | PinocchioArm | ArrayLike, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike,
@@ -213,19 +218,19 @@ def rne(dyn: DHModel | PinocchioArm | ArrayLike, q: ArrayLike, qd: ArrayLike, qd
     array([98.1 ,  9.81])
 
     """
-    arm = dyn_arm(dyn)
-    n = arm.robot.n
-    if grav is None:
-        x, v, a = _fast_vector(q, n, _SAFE_Q), _fast_vector(qd, n, _SAFE_QD), _fast_vector(
-            qdd, n, _SAFE_QDD)
-        if x is not None and v is not None and a is not None:
-            tau = pin.rnea(arm.model, _scratch(arm, data), x, v, a)
-            law = arm.friction
-            return _finite(tau if law.is_zero else tau + law(v), 'rne')
+    arm = dyn if type(dyn) is PinocchioArm else dyn_arm(dyn)
+    law = arm.friction   # ValueError for a robot without dynamics
+    if grav is None and arm.torque_bound < _SAFE_TORQUE and _plain(q, qd, qdd):
+        try:
+            tau = pin.rnea(arm.model, arm.scratch(data), q, qd, qdd)
+        except _REFUSED:   # the full route below says what
+            pass
+        else:
+            return tau if law.is_zero else tau + law(qd)  # type: ignore[arg-type]
     qq, vv, aa = _vectors(arm.robot, q=q, qd=qd, qdd=qdd)
     model, scratch = _model_and_data(arm, grav, data)
     tau = np.array([pin.rnea(model, scratch, qq[k], vv[k], aa[k]) for k in range(qq.shape[0])])
-    return _single(tau + arm.friction(vv), q, 'rne')
+    return _single(tau + law(vv), q, 'rne')
 
 
 def inertia(dyn: DHModel | PinocchioArm | ArrayLike, q: ArrayLike, *,
@@ -245,11 +250,13 @@ def inertia(dyn: DHModel | PinocchioArm | ArrayLike, q: ArrayLike, *,
            [ 4.,  1.]])
 
     """
-    arm = dyn_arm(dyn)
+    arm = dyn if type(dyn) is PinocchioArm else dyn_arm(dyn)
     # Pinocchio's Python crba returns the whole symmetric matrix (since 3.0; pinned 4.1).
-    x = _fast_vector(q, arm.robot.n, _SAFE_Q)
-    if x is not None:
-        return _finite(pin.crba(arm.model, _scratch(arm, data), x), 'inertia')
+    if arm.torque_bound < _SAFE_TORQUE and _plain(q):   # (torque_bound: ValueError without dyn)
+        try:
+            return pin.crba(arm.model, arm.scratch(data), q)
+        except _REFUSED:   # the full route below says what
+            pass
     (qq,) = _vectors(arm.robot, q=q)
     model, scratch = _model_and_data(arm, None, data)
     out = np.empty((qq.shape[0], arm.robot.n, arm.robot.n))
@@ -273,11 +280,12 @@ def gravity(dyn: DHModel | PinocchioArm | ArrayLike, q: ArrayLike,
     array([98.1 ,  9.81])
 
     """
-    arm = dyn_arm(dyn)
-    x = None if grav is not None else _fast_vector(q, arm.robot.n, _SAFE_Q)
-    if x is not None:
-        return _finite(pin.computeGeneralizedGravity(arm.model, _scratch(arm, data), x),
-                       'gravity')
+    arm = dyn if type(dyn) is PinocchioArm else dyn_arm(dyn)
+    if grav is None and arm.torque_bound < _SAFE_TORQUE and _plain(q):
+        try:
+            return pin.computeGeneralizedGravity(arm.model, arm.scratch(data), q)
+        except _REFUSED:   # the full route below says what
+            pass
     (qq,) = _vectors(arm.robot, q=q)
     model, scratch = _model_and_data(arm, grav, data)
     return _single(np.array([pin.computeGeneralizedGravity(model, scratch, qk) for qk in qq]), q,
@@ -299,14 +307,15 @@ def coriolis(dyn: DHModel | PinocchioArm | ArrayLike, q: ArrayLike, qd: ArrayLik
     array([-0.,  3.])
 
     """
-    arm = dyn_arm(dyn)
-    n = arm.robot.n
-    x, v = _fast_vector(q, n, _SAFE_Q), _fast_vector(qd, n, _SAFE_QD)
-    if x is not None and v is not None:
-        return _finite(pin.nonLinearEffects(arm.model_without_gravity, _scratch(arm, data), x,
-                                            v), 'coriolis')
+    arm = dyn if type(dyn) is PinocchioArm else dyn_arm(dyn)
+    model = arm.model_without_gravity
+    if arm.torque_bound < _SAFE_TORQUE and _plain(q, qd):
+        try:
+            return pin.nonLinearEffects(model, arm.scratch(data), q, qd)
+        except _REFUSED:   # the full route below says what
+            pass
     qq, vv = _vectors(arm.robot, q=q, qd=qd)
-    model, scratch = arm.model_without_gravity, data_for(arm, data)
+    scratch = arm.scratch(data)
     return _single(np.array([pin.nonLinearEffects(model, scratch, qq[k], vv[k])
                              for k in range(qq.shape[0])]), q, 'coriolis')
 
@@ -318,7 +327,12 @@ def coriolis_matrix(dyn: DHModel | PinocchioArm | ArrayLike, q: ArrayLike, qd: A
 
     Pinocchio's ``computeCoriolisMatrix``; q and qd of shape (n,).
     """
-    arm = dyn_arm(dyn)
+    arm = dyn if type(dyn) is PinocchioArm else dyn_arm(dyn)
+    if arm.torque_bound < _SAFE_TORQUE and _plain(q, qd):
+        try:
+            return pin.computeCoriolisMatrix(arm.model, arm.scratch(data), q, qd)
+        except _REFUSED:   # the full route below says what
+            pass
     qq, vv = _vectors(arm.robot, q=q, qd=qd)
     if qq.shape[0] != 1 or np.ndim(q) != 1:
         raise ValueError('coriolis_matrix takes one configuration, q of shape (n,)')
@@ -390,14 +404,17 @@ def fdyn(dyn: DHModel | PinocchioArm | ArrayLike, t0: float, tf: float,
 
     def derivative(t: float, x: NDArray[np.float64]) -> NDArray[np.float64]:
         q, qd = x[:n], x[n:]
-        tau = no_torque if torquefun is None else np.asarray(torquefun(t, q, qd),
-                                                             dtype=np.float64)
-        if tau.shape != (n,) or not all_finite(tau):
-            raise ValueError(f'torquefun must return {n} finite torques at t = {t}, got {tau!r}')
-        if not qd.dot(qd) <= _SAFE_QD:   # else the full check of each velocity decides
+        if torquefun is None:
+            tau = no_torque
+        else:
+            tau = np.asarray(torquefun(t, q, qd), dtype=np.float64)
+            if tau.shape != (n,) or not all_finite(tau):
+                raise ValueError(f'torquefun must return {n} finite torques at t = {t}, '
+                                 f'got {tau!r}')
+        if not math.hypot(*qd.tolist()) <= MAX_JOINT_VELOCITY:   # else each velocity decides
             bounded_array('qd', qd, MAX_JOINT_VELOCITY)
         qdd = pin.aba(model, data, q, qd, tau if law.is_zero else tau - law(qd))
-        if not all_finite(qdd):
+        if not math.isfinite(math.hypot(*qdd.tolist())) and not all_finite(qdd):
             raise ValueError(f'fdyn: the joint accelerations are not finite at t = {t} s '
                              f'(q = {q}, qd = {qd})')
         return np.concatenate((qd, qdd))

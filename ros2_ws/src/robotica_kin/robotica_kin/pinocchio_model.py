@@ -14,22 +14,27 @@ Pinocchio's split, kept here: the model is built once and then only read, so one
 :class:`PinocchioArm` may serve every thread; the scratch of the algorithms, a
 ``pinocchio.Data`` (``arm.model.createData()``), belongs to the caller, one per node, thread or
 object. The arm builds, on first use, what it derives from its robot once and for all (the
-friction law, a copy of the model without gravity) and keeps it; nothing else is cached, and
-nothing mutable: a caller that computes often keeps its arm and its data, and passes them to the
-functions that take them (``fkine(arm, q, data=data)``). Given a
-robot instead, ``fkine`` and the Jacobians take their NumPy route, which needs no model, and the
-dynamics build the model and its scratch for the call. A caller that changes a model (its
-gravity, a payload) builds its own with :func:`build_model`.
+friction law, a copy of the model without gravity, a bound of its torques) and keeps it, with a
+scratch of its own per thread for the dynamics (:meth:`PinocchioArm.scratch`); the models are
+never changed. A caller that computes often keeps its arm and its data, and passes them to the
+functions that take them (``fkine(arm, q, data=data)``). Given a robot instead, ``fkine`` and
+the Jacobians take their NumPy route, which needs no model, and the dynamics take the arm
+:func:`dyn_arm` keeps for that robot object. A caller that changes a model (its gravity, a
+payload) builds its own with :func:`build_model`.
 """
 
+import copy
 from dataclasses import dataclass
 from functools import cached_property
+import threading
 from typing import Any
+import weakref
 
 import numpy as np
 from numpy.typing import ArrayLike
 import pinocchio as pin
 
+from robotica_kin.bounds import MAX_JOINT_ACCELERATION, MAX_JOINT_POSITION, MAX_JOINT_VELOCITY
 from robotica_kin.dh import as_dh_model, as_dyn_model, dh_model, DHModel
 from robotica_kin.joint_friction import JointFriction
 
@@ -38,6 +43,8 @@ __all__ = ['PinocchioArm', 'TOOL_FRAME', 'build_model', 'data_for', 'dyn_arm',
 
 TOOL_FRAME = 'tool0'
 """Name of the tool frame (``DHModel.tool`` on link n), the frame of fkine and the Jacobians."""
+
+_DEFAULT_GRAVITY = 9.81   # [m/s²] Pinocchio's default |g|, the gravity of every arm's model
 
 
 @dataclass(frozen=True, eq=False)
@@ -84,6 +91,76 @@ class PinocchioArm:
         model = pin.Model(self.model)
         model.gravity = pin.Motion.Zero()
         return model
+
+    @cached_property
+    def torque_bound(self) -> float:
+        """
+        Return an upper bound [N m | N] of the dynamics' values within the joint bounds.
+
+        Over every q, q', q'' within :mod:`robotica_kin.bounds` and the model's gravity (9.81
+        m/s²), each element of M, G, V, F and of ``M q'' + G + V + F`` is at most
+        ``K X + F_max``: ``K = sum(m_k) (1 + R)² + sum(|I_k|) + sum(J_m G²)`` bounds the inertia
+        about any axis, with R the reach (every ``|a|``, ``|d|`` and centre of mass, plus
+        ``MAX_JOINT_POSITION`` per prismatic joint), ``X = n q''_max + 3 n² q'_max² + g`` the
+        acceleration of any point per unit of arm, and ``F_max`` the friction at ``q'_max``.
+        Crude (orders of magnitude above the real torques); inf or NaN for absurd parameters.
+        The dynamics check their results only when it is not far below overflow. Raises
+        ValueError without a ``dyn`` table.
+        """
+        robot = as_dyn_model(self.robot)
+        assert robot.dyn is not None
+        dyn = np.abs(robot.dyn)
+        n = robot.n
+        reach = float(dyn[:, [1, 3, 6, 7, 8]].sum()) + MAX_JOINT_POSITION * int(
+            robot.prismatic.sum())
+        acceleration = (n * MAX_JOINT_ACCELERATION + 3.0 * (n * MAX_JOINT_VELOCITY) ** 2
+                        + _DEFAULT_GRAVITY)
+        with np.errstate(over='ignore', invalid='ignore'):   # absurd masses: inf or NaN
+            inertia = (float(dyn[:, 5].sum()) * (1.0 + reach) ** 2 + float(dyn[:, 9:15].sum())
+                       + float((dyn[:, 15] * dyn[:, 16] ** 2).sum()))
+            friction = float((dyn[:, 16] ** 2 * dyn[:, 17] * MAX_JOINT_VELOCITY
+                              + dyn[:, 16] * np.maximum(dyn[:, 18], dyn[:, 19])).sum())
+        return inertia * acceleration + friction
+
+    @cached_property
+    def _own_data(self) -> '_OwnData':
+        """Each thread's own Data of :attr:`model`, built on the thread's first use."""
+        return _OwnData(self.model)
+
+    @cached_property
+    def _checked_data(self) -> list[Any]:
+        """Return a one-element list: the caller's Data checked last (by any thread)."""
+        return [None]
+
+    def scratch(self, data: Any = None) -> Any:
+        """
+        Return ``data`` once it is checked, or for None this thread's own Data of :attr:`model`.
+
+        The dynamics' scratch: a caller's ``data`` is checked as :func:`data_for` does, and
+        the last one checked is remembered (the arm keeps a reference to it; a thread that
+        alternates two checks each again, 0.3 µs); without one, each thread gets a Data of its
+        own, built on its first call and reused (the algorithms only write it, and return new
+        arrays).
+
+        Raises
+        ------
+        ValueError
+            When ``data`` is not a Pinocchio ``Data`` of this model.
+
+        """
+        if data is None:
+            return self._own_data.data
+        checked = self._checked_data
+        if data is not checked[0]:
+            checked[0] = data_for(self, data)
+        return data
+
+
+class _OwnData(threading.local):
+    """One Data of a model per thread (``data``), built on the thread's first use."""
+
+    def __init__(self, model: Any) -> None:
+        self.data = model.createData()
 
 
 def pinocchio_arm(dh: DHModel | ArrayLike) -> PinocchioArm:
@@ -165,9 +242,16 @@ def robot_and_arm(dh: DHModel | PinocchioArm | ArrayLike,
     return as_dh_model(dh), None
 
 
+_ARMS: 'weakref.WeakKeyDictionary[DHModel, PinocchioArm]' = weakref.WeakKeyDictionary()
+
+
 def dyn_arm(dyn: DHModel | PinocchioArm | ArrayLike) -> PinocchioArm:
     """
     Return ``dyn`` when it is the arm of a robot with dynamics, else the arm built from it.
+
+    The arm of a :class:`~robotica_kin.dh.DHModel` (frozen, its arrays read-only) is built on
+    its first use and kept while that robot object lives; its ``robot`` is a shallow copy, so
+    that the kept arm does not keep the robot alive. A raw table gets a new arm on every call.
 
     Raises
     ------
@@ -175,9 +259,16 @@ def dyn_arm(dyn: DHModel | PinocchioArm | ArrayLike) -> PinocchioArm:
         For a robot or an arm without a ``dyn`` table, or a bad table.
 
     """
+    if type(dyn) is PinocchioArm and dyn.robot.dyn is not None:
+        return dyn
     if isinstance(dyn, PinocchioArm):
         as_dyn_model(dyn.robot)
         return dyn
+    if isinstance(dyn, DHModel):
+        arm = _ARMS.get(dyn)
+        if arm is None:
+            arm = _ARMS[dyn] = pinocchio_arm(copy.copy(as_dyn_model(dyn)))
+        return arm
     return pinocchio_arm(as_dyn_model(dyn))
 
 

@@ -3,8 +3,13 @@ Tests of robotica_kin.pinocchio_model: Pinocchio models from modified-DH tables 
 
 The joint frames of the model must be Craig's link frames (compared with a NumPy product of
 (4.4) matrices), and the ``dyn`` columns must land in the right inertias. The arm keeps the
-model/data split: its model is built once and read, the scratch ``Data`` is the caller's.
+model/data split: its model is built once and read, the scratch ``Data`` is the caller's or
+the arm's own for the calling thread.
 """
+
+from concurrent.futures import ThreadPoolExecutor
+import gc
+import weakref
 
 import numpy as np
 import pinocchio as pin
@@ -106,6 +111,38 @@ def test_dyn_arm_needs_dynamics():
     np.testing.assert_array_equal(arm.robot.dyn, dyn)
     with pytest.raises(ValueError, match='no dyn table'):
         dyn_arm(pinocchio_arm(planar_rr(1.0, 1.0)))
+
+
+def test_dyn_arm_keeps_one_arm_per_robot_object_while_the_robot_lives():
+    robot = puma560()
+    arm = dyn_arm(robot)
+    assert dyn_arm(robot) is arm                       # built once for this robot object
+    assert dyn_arm(puma560()) is not arm               # another object, another arm
+    np.testing.assert_array_equal(arm.robot.dyn, robot.dyn)
+    alive = weakref.ref(robot)
+    del robot
+    gc.collect()
+    assert alive() is None                             # the kept arm does not keep it alive
+
+
+def test_scratch_is_one_data_per_thread_and_checks_the_callers():
+    arm = pinocchio_arm(puma560())
+    own = arm.scratch()
+    assert arm.scratch(None) is own and arm.model.check(own)
+    with ThreadPoolExecutor(1) as pool:
+        other = pool.submit(arm.scratch).result()
+    assert other is not own and arm.model.check(other)
+    data = arm.model.createData()
+    assert arm.scratch(data) is data and arm.scratch(data) is data
+    wrong = pinocchio_arm(planar_rr(1.0, 1.0)).model.createData()
+    with pytest.raises(ValueError, match='Data of the model'):
+        arm.scratch(wrong)                             # refused after a good one was checked
+    assert arm.scratch(data) is data
+
+
+def test_torque_bound_needs_dynamics():
+    with pytest.raises(ValueError, match='no dyn table'):
+        pinocchio_arm(planar_rr(1.0, 1.0)).torque_bound
 
 
 def test_arm_model_is_shared_and_never_changed():
