@@ -8,9 +8,10 @@ joint, K_p = 25, K_v = 10):
 - **core**: :class:`~robotica_sim.simulation.arm.ArmSimulation` (RK4, four ABA calls per step)
   and :class:`~robotica_ctrl.joint_control.ComputedTorque` (one RNEA call) in one Python loop,
   with the reference sampled each step, as the nodes do; also each part alone [µs per step];
-- **dynamics**: ``rne``, ``inertia``, ``gravity``, ``coriolis`` per call (the arm and one
-  ``data`` kept, inputs checked), each as a ratio to the bare Pinocchio call it wraps, timed
-  in the same run on the same model, data and configurations;
+- **dynamics**: each function of :mod:`robotica_kin.dynamics` per call (the arm and one
+  ``data`` kept, inputs checked) as a ratio to the bare call it wraps, with the floor of a
+  checked Python wrapper, timed in the same run on the same model, data and configurations
+  (:mod:`robotica_sim.benchmarks.dynamics`);
 - **round trip**: the fastest a lockstep loop over DDS can be here: a JointState published by
   this process, answered by an echo process (:func:`run_echo`) with a Float64MultiArray, with
   the QoS and the executor of the arm nodes (EventsExecutor); the RTF limit is step / round
@@ -35,7 +36,7 @@ from robotica_ctrl.joint_control import (ComputedTorque, ComputedTorqueGains, Jo
 from robotica_ctrl.trajectory.sinusoid import sinusoid
 from robotica_kin.pinocchio_model import pinocchio_arm
 from robotica_kin.robots import puma560
-from robotica_sim.benchmarks.kinematics import dynamics_pairs
+from robotica_sim.benchmarks.dynamics import time_dynamics
 from robotica_sim.benchmarks.measurement_row import MeasurementRow
 from robotica_sim.simulation.arm import ArmSimulation, ArmSimulationParams
 
@@ -88,20 +89,24 @@ def core_benchmark(steps: int = 5000) -> list[MeasurementRow]:
     ]
 
 
-def dynamics_benchmark(count: int = 5000, seed: int = 0) -> list[MeasurementRow]:
-    """Return each dynamics function's time per call over raw Pinocchio's (PUMA 560) [×]."""
+def dynamics_benchmark(count: int = 5000, seed: int = 0,
+                       repeats: int = 15) -> list[MeasurementRow]:
+    """Return each dynamics function's time per call over the bare call's (PUMA 560) [×]."""
     arm = pinocchio_arm(puma560())
     rng = np.random.default_rng(seed)
     q = rng.uniform(arm.robot.qlim[:, 0], arm.robot.qlim[:, 1], size=(count, 6))
     qd, qdd = rng.uniform(-1.0, 1.0, size=(2, count, 6))
     rows = []
-    for name, ours, raw, raw_name in dynamics_pairs(arm, arm.model.createData(), q, qd, qdd):
-        ours(0)
-        raw(0)
-        mine, bare = _per_step(ours, count), _per_step(raw, count)
-        rows.append(MeasurementRow(f'{name} / raw Pinocchio', mine / bare, '×',
-                                   f'{name} {mine:.2f} µs, pin.{raw_name} {bare:.2f} µs per '
-                                   f'call, {count} configurations, checked inputs'))
+    for t in time_dynamics(arm, q, qd, qdd, repeats):
+        floor = ('' if t.floor_us is None else
+                 f'; floor (one Python call + norm checks) {t.floor_us:.2f} µs = '
+                 f'{t.floor_ratio:.2f}×')
+        per, calls = ((' per evaluation', 'evaluations a run') if t.function == 'fdyn'
+                      else ('', 'calls a block'))
+        rows.append(MeasurementRow(
+            f'{t.function} / bare call', t.ratio, '×',
+            f'{t.function} {t.robotica_us:.2f} µs, {t.raw_name} {t.raw_us:.2f} µs{per} = '
+            f'{t.ratio:.2f}×{floor}; {t.count} {calls}, CPU time, best of {t.blocks}'))
     return rows
 
 

@@ -11,16 +11,17 @@ within the joint limits (a seeded generator), it times:
 - the baseline: the product of Craig's link matrices (4.5) built with NumPy for each call, the
   geometric Jacobian from those frames, and HEMERO's own ``ikine`` iteration
   ``q <- q + pinv(J0) tr2diff(fkine(q), T)`` from ``q0 = 0`` (catalog §12.2), all in plain NumPy;
-- for a robot with dynamics (the PUMA 560), ``rne``, ``inertia``, ``gravity`` and ``coriolis``
-  per call (checked inputs, the arm and one ``data``), each next to the bare Pinocchio call it
-  wraps (``rnea``, ``crba``, ``computeGeneralizedGravity``, ``nonLinearEffects``) on the same
-  model, data and configurations; the robotica row carries the ratio of the medians.
+- for a robot with dynamics (the PUMA 560), each function of :mod:`robotica_kin.dynamics` per
+  call (checked inputs, the arm and one ``data``), the bare call it wraps and the floor of a
+  checked Python wrapper, by :func:`robotica_sim.benchmarks.dynamics.time_dynamics` (CPU time,
+  best of 15 blocks over the m configurations); the robotica and floor rows carry the ratio to
+  the bare call.
 
-Times are wall-clock per configuration [µs] (``time.perf_counter``): median and 95th percentile
-of the per-call times, or the batch time divided by m. Run it with ``robotica bench kin``.
+Other times are wall-clock per configuration [µs] (``time.perf_counter``): median and 95th
+percentile of the per-call times, or the batch time divided by m. Run it with
+``robotica bench kin``.
 """
 
-import dataclasses
 from dataclasses import dataclass
 import math
 import time
@@ -28,17 +29,16 @@ from typing import Any, Callable
 
 import numpy as np
 from numpy.typing import NDArray
-import pinocchio as pin
 from robotica_kin.dh import DHModel
-from robotica_kin.dynamics import coriolis, gravity, inertia, rne
 from robotica_kin.forward_kinematics import fkine
 from robotica_kin.ik import ikine_solve
 from robotica_kin.jacobian import jacob0
 from robotica_kin.pinocchio_model import pinocchio_arm, PinocchioArm
 from robotica_kin.robots import planar_rrr, puma560
+from robotica_sim.benchmarks.dynamics import time_dynamics
 
-__all__ = ['BenchmarkRow', 'DynamicsPair', 'baseline_fkine', 'baseline_ikine', 'baseline_jacob0',
-           'dynamics_pairs', 'run_kinematics_benchmark']
+__all__ = ['BenchmarkRow', 'baseline_fkine', 'baseline_ikine', 'baseline_jacob0',
+           'run_kinematics_benchmark']
 
 PLANAR_MASK = (1, 1, 0, 0, 0, 1)
 
@@ -55,7 +55,7 @@ class BenchmarkRow:
     median_us: float         # [µs] per configuration
     p95_us: float | None     # [µs] per configuration (per-call mode only)
     success_rate: float | None = None   # ikine only
-    ratio: float | None = None          # dynamics, robotica route: median / raw Pinocchio's
+    ratio: float | None = None          # dynamics, robotica and floor routes: over the raw call
 
 
 def _link(alpha: float, a: float, theta: float, d: float) -> NDArray[np.float64]:
@@ -137,42 +137,20 @@ def _batch_row(robot: str, function: str, route: str, fn: Callable[[], object],
     return BenchmarkRow(robot, function, route, 'batch', count, per, None)
 
 
-DynamicsPair = tuple[str, Callable[[int], object], Callable[[int], object], str]
-
-
-def dynamics_pairs(arm: PinocchioArm, data: Any, q: NDArray[np.float64],
-                   qd: NDArray[np.float64], qdd: NDArray[np.float64]) -> tuple[DynamicsPair, ...]:
-    """
-    Return (name, call k, raw Pinocchio call k, raw name) for rne, inertia, gravity, coriolis.
-
-    Call k computes at configuration k of ``q``, ``qd``, ``qdd`` (shape (m, n)) on the arm's
-    model and the one ``data``: the function of :mod:`robotica_kin.dynamics` with its checks,
-    or the bare Pinocchio algorithm it wraps.
-    """
-    model = arm.model
-    return (('rne', lambda k: rne(arm, q[k], qd[k], qdd[k], data=data),
-             lambda k: pin.rnea(model, data, q[k], qd[k], qdd[k]), 'rnea'),
-            ('inertia', lambda k: inertia(arm, q[k], data=data),
-             lambda k: pin.crba(model, data, q[k]), 'crba'),
-            ('gravity', lambda k: gravity(arm, q[k], data=data),
-             lambda k: pin.computeGeneralizedGravity(model, data, q[k]),
-             'computeGeneralizedGravity'),
-            ('coriolis', lambda k: coriolis(arm, q[k], qd[k], data=data),
-             lambda k: pin.nonLinearEffects(model, data, q[k], qd[k]), 'nonLinearEffects'))
-
-
 def _dynamics_rows(arm: PinocchioArm, q: NDArray[np.float64],
                    qd: NDArray[np.float64], qdd: NDArray[np.float64]) -> list[BenchmarkRow]:
-    """Time each dynamics function and the bare Pinocchio call it wraps."""
-    name = arm.robot.name
-    index = np.arange(len(q))
-    rows = []
-    for function, ours, raw, raw_name in dynamics_pairs(arm, arm.model.createData(), q, qd, qdd):
-        ours(0)
-        raw(0)
-        mine = _row(name, function, 'robotica', _per_call(ours, index))
-        bare = _row(name, function, f'raw pinocchio ({raw_name})', _per_call(raw, index))
-        rows += [dataclasses.replace(mine, ratio=mine.median_us / bare.median_us), bare]
+    """Time each dynamics function, the bare call it wraps and the Python floor (CPU time)."""
+    name, rows = arm.robot.name, []
+    for t in time_dynamics(arm, q, qd, qdd):
+        function = 'fdyn (per evaluation)' if t.function == 'fdyn' else t.function
+        mode = f'per call, CPU, best of {t.blocks} blocks'
+        rows += [BenchmarkRow(name, function, 'robotica', mode, t.count, t.robotica_us, None,
+                              ratio=t.ratio),
+                 BenchmarkRow(name, function, f'raw: {t.raw_name}', mode, t.count, t.raw_us,
+                              None)]
+        if t.floor_us is not None:
+            rows.append(BenchmarkRow(name, function, 'floor: one Python call + norm checks',
+                                     mode, t.count, t.floor_us, None, ratio=t.floor_ratio))
     return rows
 
 
@@ -239,6 +217,6 @@ def run_kinematics_benchmark(count: int = 1000, baseline_ik_count: int = 100, se
             lambda T: baseline_solved.append(baseline_ikine(robot, T, weights)[1]),
             goals[:baseline_ik_count]), success=float(np.mean(baseline_solved))))
         if robot.dyn is not None:
-            say(f'{robot.name}: rne, inertia, gravity, coriolis against raw Pinocchio')
+            say(f'{robot.name}: the dynamics against raw Pinocchio')
             rows += _dynamics_rows(arm, q, *rng.uniform(-1.0, 1.0, size=(2,) + q.shape))
     return rows

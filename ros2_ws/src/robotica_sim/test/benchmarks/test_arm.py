@@ -18,8 +18,11 @@ def test_core_benchmark_runs_a_converging_loop():
 
 
 def test_dynamics_benchmark_gives_a_ratio_per_function():
-    rows = dynamics_benchmark(20)
-    assert [row.what for row in rows] == [f'{name} / raw Pinocchio' for name in
-                                          ('rne', 'inertia', 'gravity', 'coriolis')]
+    rows = dynamics_benchmark(20, repeats=2)
+    assert [row.what for row in rows] == [f'{name} / bare call' for name in
+                                          ('rne', 'inertia', 'gravity', 'coriolis',
+                                           'coriolis_matrix', 'friction', 'fdyn')]
     for row in rows:
         assert row.unit == '×' and row.value > 0.0 and 'µs' in row.detail
+        assert f'= {row.value:.2f}×' in row.detail
+        assert ('floor' in row.detail) is (row.what != 'fdyn / bare call')

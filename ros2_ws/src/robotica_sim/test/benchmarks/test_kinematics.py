@@ -36,7 +36,7 @@ def test_baseline_ikine_is_hemero_pinv_newton():
 
 def test_benchmark_rows_and_table():
     rows = run_kinematics_benchmark(count=5, baseline_ik_count=2, seed=1)
-    assert len(rows) == 28
+    assert len(rows) == 40
     pairs = {(r.robot, r.function) for r in rows}
     assert pairs >= {('puma560', 'ikine'), ('planar_rrr', 'jacob0')}
     for row in rows:
@@ -49,14 +49,24 @@ def test_benchmark_rows_and_table():
 
 def test_benchmark_has_each_dynamics_function_against_raw_pinocchio():
     rows = run_kinematics_benchmark(count=5, baseline_ik_count=1, seed=1)
-    dynamics = [r for r in rows if r.function in ('rne', 'inertia', 'gravity', 'coriolis')]
+    dynamics = [r for r in rows if r.route == 'robotica' and r.mode.startswith('per call, CPU')]
+    assert [r.function for r in dynamics] == ['rne', 'inertia', 'gravity', 'coriolis',
+                                              'coriolis_matrix', 'friction',
+                                              'fdyn (per evaluation)']
     assert {r.robot for r in dynamics} == {'puma560'}    # the planar 3R has no dyn table
-    for function in ('rne', 'inertia', 'gravity', 'coriolis'):
-        ours, raw = (r for r in dynamics if r.function == function)
-        assert ours.route == 'robotica' and raw.route.startswith('raw pinocchio')
+    for ours in dynamics:
+        same = [r for r in rows if r.function == ours.function]
+        raw = next(r for r in same if r.route.startswith('raw: '))
         assert ours.ratio == pytest.approx(ours.median_us / raw.median_us)
-        assert raw.ratio is None and ours.count == raw.count == 5
-    assert format_table(rows).count('×') == 5     # the header and the four ratios
+        assert raw.ratio is None and ours.count == raw.count
+        floors = [r for r in same if r.route.startswith('floor')]
+        if ours.function.startswith('fdyn'):
+            assert not floors and ours.count > 5          # evaluations of the right-hand side
+        else:
+            (floor,) = floors
+            assert floor.ratio == pytest.approx(floor.median_us / raw.median_us)
+            assert ours.count == floor.count == 5
+    assert format_table(rows).count('×') == 14    # the header, 7 robotica and 6 floor ratios
 
 
 def test_bench_command_json(capsys):
@@ -64,8 +74,8 @@ def test_bench_command_json(capsys):
         main(['bench', 'kin', '--count', '3', '--baseline-ik-count', '1', '--json', '--quiet'])
     assert info.value.code == 0
     rows = json.loads(capsys.readouterr().out)
-    assert len(rows) == 28 and rows[0]['function'] == 'fkine'
-    assert [r['ratio'] is None for r in rows].count(False) == 4
+    assert len(rows) == 40 and rows[0]['function'] == 'fkine'
+    assert [r['ratio'] is None for r in rows].count(False) == 13
 
 
 def test_bench_command_refuses_a_zero_count(capsys):
