@@ -11,14 +11,14 @@ import math
 import random
 
 from builtin_interfaces.msg import Duration
-from geometry_msgs.msg import Twist
+from geometry_msgs.msg import Twist, WrenchStamped
 from nav_msgs.msg import Odometry, Path
 import numpy as np
 import pytest
 from robotica_kin.ros.convert import path_message, seconds_to_stamp
 from robotica_kin.ros.hostile import fuzz
 from robotica_kin.ros.qos import LATCHED_QOS
-from robotica_msgs.msg import JointControllerState, TrackingError
+from robotica_msgs.msg import ForceControlState, JointControllerState, TrackingError
 from sensor_msgs.msg import JointState, LaserScan
 from std_msgs.msg import Float64MultiArray
 from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
@@ -34,6 +34,17 @@ def _stamped(msg, t):
 
 def _joint_state(t):
     return _stamped(JointState(name=PUMA_JOINTS, position=[0.0] * 6, velocity=[0.0] * 6), t)
+
+
+def _pp_state(t):
+    """Return the PP robot of Ej. 8.10 at x = (2, 4) m, at rest (joints [d2, d1])."""
+    return _stamped(JointState(name=['d2_vertical', 'd1_horizontal'],
+                               position=[math.sqrt(2.0), 3.0 * math.sqrt(2.0)],
+                               velocity=[0.0, 0.0]), t)
+
+
+def _wrench(t):
+    return _stamped(WrenchStamped(), t)
 
 
 def _trajectory(t):
@@ -63,7 +74,16 @@ def _wall_scan(t):
     return msg
 
 
+S = 1.0 / math.sqrt(2.0)
 CASES = {
+    'joint_controller_hybrid': (   # a force law: it waits for the wrench of each state's stamp
+        ['-p', 'law:=hybrid', '-p', 'robot:=pp_robot', '-p', 'gravity:=[0.0, -9.81, 0.0]',
+         '-p', f'task.axes:=[{S}, {-S}, 0.0, {S}, {S}, 0.0]'],
+        {'joint_states': (JointState, _pp_state), 'contact_wrench': (WrenchStamped, _wrench)},
+        {'joint_torques': Float64MultiArray,
+         '/joint_controller/force_control': ForceControlState},
+        lambda got: any(m.header.stamp.sec >= 100
+                        for m in got['/joint_controller/force_control'][-20:])),
     'joint_controller': (
         [], {'joint_states': (JointState, _joint_state),
              '/joint_controller/joint_trajectory': (JointTrajectory, _trajectory)},
@@ -90,9 +110,10 @@ def test_hostile_messages_neither_kill_nor_poison_the_node(case, start_node, ros
                                                            fuzz_survived):
     parameters, inputs, outputs, recovered = CASES[case]
     node, executor = ros_node
-    proc = start_node('robotica_ctrl', case, *parameters)
+    proc = start_node('robotica_ctrl', case.partition('_hybrid')[0], *parameters)
     received, ok = fuzz(node, executor, inputs, outputs, recovered, random.Random(f'{case}-16'))
-    fuzz_survived(proc, received, ok)
+    fuzz_survived(proc, received, ok, {   # NaN: the axes without a position or force reference
+        '/joint_controller/force_control': ('position_reference', 'force_reference')})
 
 
 def test_a_state_whose_torques_overflow_is_not_answered(start_node, ros_node, spin, read_output):

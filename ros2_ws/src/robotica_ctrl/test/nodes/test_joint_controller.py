@@ -137,6 +137,13 @@ def test_waiting_for_a_trajectory_answers_no_state_before_it(start_node, ros_nod
     (('-p', 'robot:=planar_rr'), 'no dynamic parameters'),
     (('-p', 'first_period:=0.0'), 'first_period'),
     (('-p', 'law:=pid', '-p', 'pid.kp:=[1.0, 2.0]'), 'kp must be a scalar or have shape (6,)'),
+    (('-p', 'law:=slotine_li', '-p', 'slotine_li.gamma:=[1.0, 2.0]'),
+     'gamma must be a scalar or have shape (5,)'),   # one per link mass: link 1 has none
+    (('-p', 'law:=learning', '-p', 'learning.mu:=[300.0]'), 'makes the learning diverge'),
+    (('-p', 'law:=stiffness', '-p', 'task.axes:=[1.0, 0.0]'), 'task.axes must be 3, 6 or 9'),
+    (('-p', 'law:=hybrid'), 'needs 6 axes (one per joint), got 1'),
+    (('-p', 'law:=operational_space', '-p', 'cartesian.goal:=[0.5, 0.1]'),
+     'cartesian.goal must be 6 numbers'),
 ])
 def test_bad_parameters_are_refused(start_node, read_output, arguments, reason):
     proc = start_node('robotica_ctrl', 'joint_controller', *arguments)

@@ -67,6 +67,8 @@ TOPICS = {
     'bumper': '/bumper',
     'scan': '/scan',
     'map': '/map',
+    'force_control': '/joint_controller/force_control',
+    'cartesian_control': '/joint_controller/cartesian_control',
 }
 """The topics :func:`load_run` reads, by the role they play in a run."""
 
@@ -89,8 +91,13 @@ MSGTYPES = {
     'bumper': 'robotica_msgs/msg/Contact',
     'scan': 'sensor_msgs/msg/LaserScan',
     'map': 'nav_msgs/msg/OccupancyGrid',
+    'force_control': 'robotica_msgs/msg/ForceControlState',
+    'cartesian_control': 'robotica_msgs/msg/CartesianControlState',
 }
 """The message type each role's topic must have; a topic of another type is ignored."""
+
+_LAST = ('clock', 'status', 'path', 'trajectory', 'map', 'force_control', 'cartesian_control')
+"""The roles of which only the last message is read."""
 
 RANGE_TOPIC = re.compile(r'/(sonar|infrared)_(\d+)')
 """The topics of the sonar ring and the infrared sensors (full match): kind and index i."""
@@ -165,6 +172,10 @@ class RunSeries:
       ``range``, ``min_range``, ``max_range`` [m], every reading.
     - ``map_grid``: the last ``/map`` (nav_msgs/OccupancyGrid, latched) as an
       :class:`~robotica_kin.world.occupancy_grid.OccupancyGrid`.
+    - ``task_final``: the last step of a task-space law (``/joint_controller/force_control``
+      or ``cartesian_control``) as arrays by field: a force law's ``position_reference``,
+      ``position`` [m], ``force_reference``, ``force`` [N] (task axes, NaN where a reference is
+      not used); a Cartesian law's ``error`` [m, rad], ``min_singular_value``.
     """
 
     bag: Path
@@ -192,6 +203,7 @@ class RunSeries:
     scans: Series | None = None         # /scan, subsampled to at most MAX_SCANS
     ranges: dict[str, Series] = field(default_factory=dict)   # /sonar_<i>, /infrared_<i>
     map_grid: OccupancyGrid | None = None   # the last /map
+    task_final: dict[str, NDArray[np.float64]] | None = None   # a task-space law's last step
 
     @property
     def is_manipulator(self) -> bool:
@@ -411,6 +423,19 @@ def _joint_reference(msg: Any, states: Series | None,
                              'velocity': np.array([s.qd_d for s in samples])}, states.names)
 
 
+def _task_final(decoded: dict[str, Any]) -> dict[str, NDArray[np.float64]] | None:
+    """Return the last step of a task-space law by field (RunSeries.task_final), or None."""
+    if 'force_control' in decoded:
+        msg = decoded['force_control']
+        return {name: np.asarray(getattr(msg, name), dtype=np.float64) for name in
+                ('position_reference', 'position', 'force_reference', 'force')}
+    if 'cartesian_control' in decoded:
+        msg = decoded['cartesian_control']
+        return {'error': np.asarray(msg.error, dtype=np.float64),
+                'min_singular_value': np.array(msg.min_singular_value)}
+    return None
+
+
 def _trial_period(scenario: dict | None) -> float:
     """Return the scenario's ``controller.trial_period`` [s], 0 when it has none."""
     controller = (scenario or {}).get('controller')
@@ -517,7 +542,7 @@ def load_run(bag: str | Path, topics: Iterable[str] | None = None) -> RunSeries:
             if connection.id not in decoded_ids:
                 continue
             role = roles_by_topic[connection.topic]
-            if role in ('clock', 'status', 'path', 'trajectory', 'map'):   # the last matters
+            if role in _LAST:   # the last matters
                 last[role] = (connection, raw)
                 continue
             if role == 'scan':   # keep every stride-th; past MAX_SCANS, every other one
@@ -577,7 +602,8 @@ def load_run(bag: str | Path, topics: Iterable[str] | None = None) -> RunSeries:
         bumper=series['bumper'], scans=_scan_series(scan_msgs) if scan_msgs else None,
         ranges={topic: _scalar_series(rows, range_receive[topic], _RANGE_COLUMNS)
                 for topic, rows in sorted(range_rows.items(), key=lambda i: _range_key(i[0]))},
-        map_grid=_grid(decoded['map']) if 'map' in decoded else None)
+        map_grid=_grid(decoded['map']) if 'map' in decoded else None,
+        task_final=_task_final(decoded))
 
 
 def _range_key(topic: str) -> tuple[str, int]:

@@ -23,8 +23,8 @@ from typing import Any, Callable, Mapping, Optional
 
 import numpy as np
 from robotica_ctrl.joint_control.control_laws import FIRST_PERIOD, make_joint_law
-from robotica_ctrl.joint_control.task_laws import (FORCE_LAWS, TASK_LAWS, TASK_PARAMETERS,
-                                                   TaskSpaceControl)
+from robotica_ctrl.joint_control.task_laws import (FORCE_LAWS, TASK_LAW_PARAMETERS, TASK_LAWS,
+                                                   TASK_PARAMETERS, TaskSpaceControl)
 from robotica_ctrl.mobile import path_shapes
 from robotica_ctrl.mobile.reactive_navigation import NAVIGATOR_PARAMETERS, navigator_params
 from robotica_ctrl.mobile.tracking_laws import (check_gains, law_for_path, LAW_PARAMETERS,
@@ -488,6 +488,8 @@ def _plan_arm(scenario: Scenario) -> list[NodeSpec]:
         _node_check(where, 'arm.ft_sensor', {k: f'arm.ft_sensor.{k}' for k in ft_sensor},
                     lambda: ft_sensor_params(ft_sensor))
     if law in TASK_LAWS:
+        gains = _dotted(law, scenario.controller.gains, where, 'controller.',
+                        {f'{law}.{k}': v for k, v in TASK_LAW_PARAMETERS[law].items()})
         return _plan_task_arm(scenario, plant, model, gains, simulator, ft_sensor)
     reference = _reference_parameters(scenario, joints)
     _node_check(where, 'reference', {'duration': 'duration', 'generator': 'reference.generator',
@@ -528,8 +530,9 @@ def _dotted(prefix: str, values: Mapping[str, Any], where: str, key: str,
     Return a scenario mapping as node parameters: nested keys joined by dots after ``prefix``.
 
     A number or a list of numbers becomes what the node's parameter (its spec in ``specs``) is:
-    a list of floats, a float or an integer; booleans, strings and unknown keys (the node
-    refuses those) pass as they are. ``key`` prefixes the scenario key in messages.
+    a list of floats, a float or an integer; booleans and strings pass as they are (the node's
+    check refuses a wrong one). ``key`` prefixes the scenario key in messages; a key that is no
+    parameter of ``specs`` is refused with the known ones.
     """
     out: dict[str, Any] = {}
     for name, value in values.items():
@@ -537,7 +540,12 @@ def _dotted(prefix: str, values: Mapping[str, Any], where: str, key: str,
         spec = specs.get(dotted)
         if isinstance(value, dict):
             out.update(_dotted(dotted, value, where, f'{key}{name}.', specs))
-        elif spec is None or isinstance(value, (bool, str)) or isinstance(spec.default, bool):
+            continue
+        if spec is None:
+            known = sorted(k.removeprefix(f'{prefix}.') for k in specs
+                           if k.startswith(prefix.partition('.')[0]))
+            raise ScenarioError(f'{where}: unknown key {key}{name}; known: {", ".join(known)}')
+        if isinstance(value, (bool, str)) or isinstance(spec.default, bool):
             out[dotted] = value
         elif isinstance(spec.default, int):
             if isinstance(value, bool) or not isinstance(value, int):
