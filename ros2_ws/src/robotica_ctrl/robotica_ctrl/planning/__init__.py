@@ -1,0 +1,11 @@
+"""
+Path planning of book ch. 12 (seed catalogue Part 10) and the parallel-parking planner of the
+course (Part 14), pure NumPy/SciPy on the world model of :mod:`robotica_kin.world` (no ROS).
+
+Every planner returns a :class:`~.plan_result.PlanResult`: a path with its cost, or no path and
+the reason, and what the search did (expanded nodes, time, whether a bound on work was hit).
+"""
+
+from .plan_result import PlanResult, SearchBudget
+
+__all__ = ['PlanResult', 'SearchBudget']
