@@ -157,3 +157,19 @@ def test_fdyn_follows_the_model_with_friction():
                                    - _friction_by_hand(robot.dyn, qd))
         differences = (result.qd[k + 1] - result.qd[k - 1]) / (2 * step)
         np.testing.assert_allclose(differences, expected, rtol=1e-4, atol=1e-4)
+
+
+@pytest.mark.parametrize('call', [
+    lambda arm: rne(arm, np.zeros(2), np.zeros(2), np.zeros(2)),
+    lambda arm: rne(arm, np.zeros(2), np.zeros(2), np.zeros(2), grav=[0, -9.81, 0]),
+    lambda arm: inertia(arm, np.zeros(2)),
+    lambda arm: gravity(arm, np.zeros(2)),
+    lambda arm: gravity(arm, np.zeros(2), grav=[0, -9.81, 0]),
+    lambda arm: coriolis(arm, np.zeros(2), np.zeros(2)),
+    lambda arm: coriolis_matrix(arm, np.zeros(2), np.zeros(2)),
+    lambda arm: friction(arm, np.zeros(2)),
+    lambda arm: fdyn(arm, 0.0, 0.1, None, np.zeros(2), np.zeros(2)),
+])
+def test_an_arm_without_dynamics_is_refused_on_every_route(call):
+    with pytest.raises(ValueError, match='no dyn table'):
+        call(pinocchio_arm(dh_model([[0, 0, 0, 0], [0, 1.0, 0, 0]])))
