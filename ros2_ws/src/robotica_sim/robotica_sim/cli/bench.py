@@ -17,7 +17,10 @@ the demo with and without TF and markers, interleaved, and once with the Foxglov
 forwarded messages it compares with the bag's; see :mod:`robotica_sim.benchmarks.visualisation`.
 ``robotica bench raycast`` times a 360-beam scan against 200 walls and a 1000 x 1000 grid,
 next to a plain NumPy loop and a Python cell traversal; see
-:mod:`robotica_sim.benchmarks.raycast`.
+:mod:`robotica_sim.benchmarks.raycast`. ``robotica bench laws`` times the ``update`` of every law
+of the joint controller on the PUMA 560 against the 1 ms servo period and runs each in closed
+loop (joint laws on θ_i = sin t, Cartesian laws on a 10 cm line, force laws against the plane of
+Ej. 8.10); see :mod:`robotica_sim.benchmarks.control_laws`.
 """
 import argparse
 import dataclasses
@@ -30,6 +33,8 @@ import time
 from robotica_ctrl.mobile.tracking_laws import LAWS
 from robotica_sim.benchmarks.arm import (core_benchmark, dynamics_benchmark, loop_benchmark,
                                          round_trip_benchmark)
+from robotica_sim.benchmarks.control_laws import (control_law_benchmark, format_law_table,
+                                                  law_rows_json)
 from robotica_sim.benchmarks.kinematics import BenchmarkRow, run_kinematics_benchmark
 from robotica_sim.benchmarks.measurement_row import MeasurementRow
 from robotica_sim.benchmarks.mobile import mobile_core_benchmark
@@ -42,8 +47,8 @@ from robotica_sim.benchmarks.your_node import your_node_benchmark
 from robotica_sim.cli.options import integer, path, real
 
 HELP = ('measure the speed of the kinematics, the arm loop, the mobile loop, the tracking '
-        "laws, the recorder, the viewer, a user's node or ray casting (robotica bench kin|"
-        'arm|mobile|tracking|recorder|view|your_node|raycast)')
+        "laws, the recorder, the viewer, a user's node, ray casting or the arm's control laws "
+        '(robotica bench kin|arm|mobile|tracking|recorder|view|your_node|raycast|laws)')
 EPILOG = """examples:
   robotica bench kin                       1000 configurations per robot, Markdown table
   robotica bench kin --count 200 --json    quicker, machine-readable
@@ -63,8 +68,12 @@ EPILOG = """examples:
                                            Python tracker (robotica new's template)
   robotica bench raycast                   360-beam scans against walls and a grid (seconds)
   robotica bench raycast --count 200 --json
+  robotica bench laws                      every joint-controller law: µs per update against
+                                           the 1 ms servo period, closed-loop error (10 s)
+  robotica bench laws --duration 0.5 --count 100
 """
-SUITES = ('kin', 'arm', 'mobile', 'tracking', 'recorder', 'view', 'your_node', 'raycast')
+SUITES = ('kin', 'arm', 'mobile', 'tracking', 'recorder', 'view', 'your_node', 'raycast',
+          'laws')
 # Upper bounds of the sizes: beyond them a benchmark runs for hours (1e7 DDS round trips, a
 # day-long ROS loop) or fills the memory (1e7 batched Jacobians are 2.9 GB), and a typo should
 # not be taken for such a request.
@@ -72,6 +81,7 @@ MAX_COUNT = 100_000
 MAX_BASELINE_IK = 10_000
 MAX_LOOP_DURATION = 600.0   # [s]
 MAX_VIEW_RUNS = 50          # demo runs each way of bench view
+MAX_LAW_RUN = 600.0         # [s] simulated, cap of bench laws' closed-loop runs
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -83,10 +93,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         "recorder = the recorder node's throughput, "
                         "view = the cost of TF and markers and the relay's throughput, "
                         "your_node = the cost of a user's Python tracker in the demo, "
-                        'raycast = ray casting on the world model')
+                        'raycast = ray casting on the world model, '
+                        "laws = the joint controller's control laws on the PUMA 560")
     parser.add_argument('--count', type=integer(1, MAX_COUNT), default=1000,
                         help='kin: random configurations per robot; arm: simulated steps of '
-                        'the core and DDS round trips; raycast: scans per world '
+                        'the core and DDS round trips; raycast: scans per world; laws: update '
+                        'calls per timed batch '
                         '(default 1000; arm: at least 5000 steps '
                         f'are used for the core; at most {MAX_COUNT})')
     parser.add_argument('--loop-duration', type=real(0.0, MAX_LOOP_DURATION),
@@ -121,6 +133,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         f'(default 3, at most {MAX_VIEW_RUNS})')
     parser.add_argument('--no-relay', action='store_true',
                         help='view: without the run with the Foxglove relay')
+    parser.add_argument('--duration', type=real(0.0, MAX_LAW_RUN, low_open=True), default=None,
+                        help='laws: cap of every closed-loop run [s, simulated] (default none: '
+                        '5 s per joint and force law, 3 learning trials of 2π s, a 2 s line)')
     parser.add_argument('--json', action='store_true', help='print JSON instead of a table')
     parser.add_argument('--quiet', action='store_true', help='no progress on stderr')
 
@@ -161,6 +176,8 @@ def main(args: argparse.Namespace) -> int:
         return _your_node(args, progress)
     if args.suite == 'raycast':
         return _print_rows(args, raycast_benchmark(args.count, args.seed, progress))
+    if args.suite == 'laws':
+        return _laws(args, progress)
     rows = run_kinematics_benchmark(args.count, args.baseline_ik_count, args.seed, progress)
     if args.json:
         print(json.dumps([dataclasses.asdict(row) for row in rows], indent=2))
@@ -241,6 +258,15 @@ def _print_rows(args: argparse.Namespace, rows: list[MeasurementRow]) -> int:
         lines = ['| what | value | how |', '|---|---:|---|']
         lines += [f'| {row.what} | {row.value:.1f} {row.unit} | {row.detail} |' for row in rows]
         print('\n'.join(lines))
+    return 0
+
+
+def _laws(args: argparse.Namespace, progress) -> int:
+    rows = control_law_benchmark(args.count, args.duration, progress)
+    if args.json:
+        print(json.dumps(law_rows_json(rows), indent=2))
+    else:
+        print(format_law_table(rows))
     return 0
 
 
