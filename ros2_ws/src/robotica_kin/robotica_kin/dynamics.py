@@ -184,7 +184,8 @@ def friction(dyn: DHModel | PinocchioArm | ArrayLike, qd: ArrayLike) -> NDArray[
     (array([6.2]), array([-6.2]))
 
     """
-    if not isinstance(dyn, (DHModel, PinocchioArm)):   # a raw table: no arm to keep
+    if type(dyn) is not PinocchioArm and not isinstance(dyn, (DHModel, PinocchioArm)):
+        # A raw table: no arm to keep.
         robot = as_dyn_model(dyn)
         (v,) = _vectors(robot, qd=qd)
         return _single(JointFriction(robot)(v), qd, 'friction')
