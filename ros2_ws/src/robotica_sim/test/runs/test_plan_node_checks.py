@@ -94,7 +94,7 @@ CASES = [
     ('surface stiffness negative', 'ej8_10', {'arm.environment.stiffness': -1},
      'arm.environment.stiffness must be in [0, 1e+09]'),
     ('unknown F/T preset', 'ej8_10', {'arm.ft_sensor.preset': 'piezo'},
-     "arm.ft_sensor.preset must be one of"),
+     'arm.ft_sensor.preset must be one of'),
     # arm_simulator (robotica_sim.simulation.arm)
     ('tau_max zero', 'ej8_2', {'arm.tau_max': [0]}, 'arm.tau_max must be > 0 N m per joint'),
     ('tau_max negative', 'ej8_2', {'arm.tau_max': [-1.0, 2.0]},
