@@ -69,6 +69,7 @@ class DecoupledPID(JointControlLaw):
     def __init__(self, gains: PIDGains | None = None) -> None:
         if gains is not None and not isinstance(gains, PIDGains):
             raise ValueError(f'gains must be PIDGains, got {type(gains).__name__}')
+        self._per_joint: tuple[NDArray[np.float64], ...] | None = None
         self.gains = PIDGains() if gains is None else gains
         self._integral: NDArray[np.float64] | None = None
         self._filtered_rate: NDArray[np.float64] | None = None
@@ -77,6 +78,31 @@ class DecoupledPID(JointControlLaw):
     def integral(self) -> NDArray[np.float64] | None:
         """Return a copy of the integral of the error ∫e dt (n,) [rad s], None after reset."""
         return None if self._integral is None else self._integral.copy()
+
+    @property
+    def gains(self) -> PIDGains:
+        """Return the gains; setting them (gain scheduling swaps them) takes effect next step."""
+        return self._gains
+
+    @gains.setter
+    def gains(self, gains: PIDGains) -> None:
+        if not isinstance(gains, PIDGains):
+            raise ValueError(f'gains must be PIDGains, got {type(gains).__name__}')
+        self._gains = gains
+        self._per_joint = None
+
+    def _gains_for(self, n: int) -> tuple[NDArray[np.float64], ...]:
+        """
+        Return K_p, K_v, K_i, tau_max, integral_max and T_f as (n,) vectors, made once per n.
+
+        The gains are frozen: broadcasting them on every step cost 40 % of the step (18 µs of
+        a PUMA step; ``robotica bench laws``).
+        """
+        if self._per_joint is None or self._per_joint[0].shape != (n,):
+            g = self.gains
+            self._per_joint = tuple(per_joint(name, getattr(g, name), n) for name in (
+                'kp', 'kv', 'ki', 'tau_max', 'integral_max', 'derivative_time_constant'))
+        return self._per_joint
 
     def reset(self) -> None:
         """Clear the integral and the derivative filter (and forget the number of joints)."""
@@ -99,14 +125,10 @@ class DecoupledPID(JointControlLaw):
         if self._integral is not None and self._integral.shape != (n,):
             raise ValueError(f'this PID runs {self._integral.size} joints, got {n} '
                              '(call reset() to change)')
-        g = self.gains
-        kp, kv, ki = (per_joint(name, getattr(g, name), n) for name in ('kp', 'kv', 'ki'))
-        tau_max = per_joint('tau_max', g.tau_max, n)
-        integral_max = per_joint('integral_max', g.integral_max, n)
+        kp, kv, ki, tau_max, integral_max, time_constant = self._gains_for(n)
         previous = np.zeros(n) if self._integral is None else self._integral
         e = np.asarray(reference.q_d) - np.asarray(state.q)
         ed = np.asarray(reference.qd_d) - np.asarray(state.qd)
-        time_constant = per_joint('derivative_time_constant', g.derivative_time_constant, n)
         if self._filtered_rate is not None:
             ed = self._filtered_rate + dt / (time_constant + dt) * (ed - self._filtered_rate)
         self._filtered_rate = ed
