@@ -14,7 +14,8 @@ Topics: the pose in, from ``odom`` (nav_msgs/Odometry, the estimate) or, with ``
 = ``ground_truth``, from ``ground_truth/odom`` (the simulator's truth); ``~/path``
 (nav_msgs/Path, transient-local) in: when its poses carry strictly increasing stamps they are
 the timing of a trajectory (trajectory tracking; otherwise it moves along the path at
-``trajectory_tracking.reference_speed``). Out: ``cmd_vel`` (geometry_msgs/Twist or, with
+``trajectory_tracking.reference_speed``); an empty path cancels the path (a planner that
+finds none sends one): the tracker stops and holds still. Out: ``cmd_vel`` (geometry_msgs/Twist or, with
 ``enable_stamped_cmd_vel`` (Nav2's parameter), geometry_msgs/TwistStamped in ``base_frame_id``
 stamped with the pose it answers, as Jazzy's diff_drive_controller takes it) and
 ``~/tracking_error`` (robotica_msgs/TrackingError, stamped with the pose it was computed from;
@@ -134,6 +135,11 @@ class PathTrackerNode(GuardedNode):
 
     # -- inputs ------------------------------------------------------------------------------
     def _on_path(self, msg: Path) -> None:
+        if not msg.poses:   # a planner with no path (or a user) cancels the path: stop
+            self._law = None
+            self._reported.clear()
+            self.get_logger().warn('an empty path on ~/path: no path to follow, stopping')
+            return
         times = [stamp_to_seconds(p.header.stamp) for p in msg.poses]
         try:
             law, path, timed = law_for_path(self._law_name, path_points(msg), self._gains,

@@ -69,6 +69,17 @@ def test_turns_towards_the_path(tracker, publish, spin):
     assert cmds[-1].angular.z < 0.0
 
 
+def test_an_empty_path_cancels_the_path_and_stops(tracker, publish, spin, read_output):
+    proc, node, executor, odom, path, cmds, errors = tracker
+    path.publish(_straight_path())
+    assert publish(executor, odom, _odom(0.0, 0.5, 0.0), lambda: cmds and cmds[-1].linear.x > 0)
+    path.publish(Path(header=_straight_path().header))   # a planner with no path sends this
+    assert spin(executor, lambda: 'empty path' in read_output(proc))
+    assert publish(executor, odom, _odom(0.1, 0.5, 0.0),
+                   lambda: cmds and cmds[-1].linear.x == 0.0 and cmds[-1].angular.z == 0.0)
+    assert proc.poll() is None
+
+
 def test_nan_pose_and_wrong_frame_stop(tracker, publish, read_output):
     proc, node, executor, odom, path, cmds, errors = tracker
     path.publish(_straight_path())
