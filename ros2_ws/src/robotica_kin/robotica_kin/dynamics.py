@@ -37,9 +37,9 @@ is cleared by the Euclidean norm of its values, ``math.hypot(*x.tolist()) <= bou
 inf fail it; every ``|x_i|`` is then within the bound; 0.13 µs for six values), and Pinocchio
 itself refuses a size or dtype not its own. Anything else (a batch, a list, another gravity, a
 value the norm cannot clear, a robot of absurd mass) takes the full route, whose checks decide
-and raise. PUMA 560, the arm and a ``data`` kept: 1.5-2× the bare Pinocchio call; the floor in
-Python, one call and the norm of each vector, is 1.5-1.7× (``robotica bench kin``,
-docs/benchmarks.md).
+and raise. PUMA 560, the arm and a ``data`` kept: 1.5-1.95× the bare Pinocchio call (``friction``
+2.3× its bare NumPy law); the floor of any checked Python wrapper, one call and the norm of each
+vector, is 1.3-1.8× (``robotica bench kin``, docs/benchmarks.md).
 """
 
 from dataclasses import dataclass
