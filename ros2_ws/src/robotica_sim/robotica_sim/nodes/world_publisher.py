@@ -17,8 +17,8 @@ from pathlib import Path
 from geometry_msgs.msg import Point
 from nav_msgs.msg import OccupancyGrid as OccupancyGridMsg
 from rclpy.experimental import EventsExecutor
-from robotica_kin.ros.convert import yaw_to_quaternion
 from robotica_kin.ros.entry_point import run_node
+from robotica_kin.ros.grid_messages import grid_message
 from robotica_kin.ros.guarded import GuardedNode
 from robotica_kin.ros.parameters import declare
 from robotica_kin.ros.qos import LATCHED_QOS
@@ -47,14 +47,8 @@ class WorldPublisherNode(GuardedNode):
         world = load_world_file(Path(path))   # WorldError (a ValueError): one line, exit 2
         grid = world.grid if world.grid is not None and not len(world.segments) \
             and not len(world.circles) else world_grid(world, resolution)
-        msg = OccupancyGridMsg()
-        msg.header.frame_id = frame
-        msg.info.resolution = grid.resolution
-        msg.info.width, msg.info.height = grid.width, grid.height
-        msg.info.origin.position.x, msg.info.origin.position.y = grid.origin[:2]
-        msg.info.origin.orientation = yaw_to_quaternion(grid.origin[2])
-        msg.data = grid.data.ravel().tolist()
-        self.create_publisher(OccupancyGridMsg, '/map', LATCHED_QOS).publish(msg)
+        self.create_publisher(OccupancyGridMsg, '/map', LATCHED_QOS).publish(
+            grid_message(grid, frame))
         self.create_publisher(MarkerArray, '~/markers', LATCHED_QOS).publish(
             world_markers(world, frame))
         self.get_logger().info(f'/map: {grid.width} x {grid.height} cells of '
