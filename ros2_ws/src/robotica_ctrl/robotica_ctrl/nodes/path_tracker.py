@@ -14,8 +14,9 @@ Topics: the pose in, from ``odom`` (nav_msgs/Odometry, the estimate) or, with ``
 = ``ground_truth``, from ``ground_truth/odom`` (the simulator's truth); ``~/path``
 (nav_msgs/Path, transient-local) in: when its poses carry strictly increasing stamps they are
 the timing of a trajectory (trajectory tracking; otherwise it moves along the path at
-``trajectory_tracking.reference_speed``); an empty path cancels the path (a planner that
-finds none sends one): the tracker stops and holds still. Out: ``cmd_vel`` (geometry_msgs/Twist or, with
+``trajectory_tracking.reference_speed``); an empty path in a frame cancels the path (a
+planner that finds none sends one): the tracker stops and holds still (an empty path without a
+frame is malformed: refused, the previous path kept). Out: ``cmd_vel`` (geometry_msgs/Twist or, with
 ``enable_stamped_cmd_vel`` (Nav2's parameter), geometry_msgs/TwistStamped in ``base_frame_id``
 stamped with the pose it answers, as Jazzy's diff_drive_controller takes it) and
 ``~/tracking_error`` (robotica_msgs/TrackingError, stamped with the pose it was computed from;
@@ -135,7 +136,7 @@ class PathTrackerNode(GuardedNode):
 
     # -- inputs ------------------------------------------------------------------------------
     def _on_path(self, msg: Path) -> None:
-        if not msg.poses:   # a planner with no path (or a user) cancels the path: stop
+        if not msg.poses and msg.header.frame_id:   # a planner with no path cancels: stop
             self._law = None
             self._reported.clear()
             self.get_logger().warn('an empty path on ~/path: no path to follow, stopping')
