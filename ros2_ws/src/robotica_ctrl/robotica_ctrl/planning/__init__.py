@@ -1,6 +1,8 @@
 """
-Path planning of book ch. 12 (seed catalogue Part 10) and the parallel-parking planner of the
-course (Part 14), pure NumPy/SciPy on the world model of :mod:`robotica_kin.world` (no ROS).
+Path planning of book ch. 12 and the course's parallel parking, pure (no ROS).
+
+The planners of seed catalogue Part 10 and the parallel-parking planner of Part 14, in
+NumPy/SciPy on the world model of :mod:`robotica_kin.world`.
 
 Every planner returns a :class:`~.plan_result.PlanResult`: a path with its cost, or no path and
 the reason, and what the search did (expanded nodes, time, whether a bound on work was hit).
