@@ -10,6 +10,7 @@ from robotica_kin.world.map_file import load_map, write_map
 from robotica_kin.world.occupancy_grid import log_odds_update, OccupancyGrid
 from robotica_kin.world.occupancy_mapping import (
     evidence_to_percent, OccupancyMap, OccupancyMappingParams, percent_to_evidence)
+from robotica_kin.world.quadtree import build_quadtree, Quadtree, QuadtreeGraph
 from robotica_kin.world.queries import (
     distance_to_obstacles, footprint_collides, footprint_distance, grow, point_in_obstacle,
     swept_collision)
@@ -17,8 +18,9 @@ from robotica_kin.world.raycast import cast_rays, RayHits
 from robotica_kin.world.shapes import box_polygon, make_world, validate_polygon, World
 from robotica_kin.world.world_section import world_from_mapping
 
-__all__ = ['OccupancyGrid', 'OccupancyMap', 'OccupancyMappingParams', 'RayHits', 'World',
-           'WorldError', 'box_polygon', 'cast_rays', 'distance_to_obstacles',
+__all__ = ['OccupancyGrid', 'OccupancyMap', 'OccupancyMappingParams', 'Quadtree',
+           'QuadtreeGraph', 'RayHits', 'World', 'WorldError', 'box_polygon', 'build_quadtree',
+           'cast_rays', 'distance_to_obstacles',
            'evidence_to_percent', 'footprint_collides', 'footprint_distance', 'grow',
            'load_map', 'log_odds_update', 'make_world', 'percent_to_evidence',
            'point_in_obstacle', 'swept_collision', 'validate_polygon', 'world_from_mapping',
