@@ -26,6 +26,7 @@ ROSDEP_KEYS = {
     'foxglove': 'python3-foxglove-sdk-pip', 'websockets': 'python3-websockets-pip',
     'yourdfpy': 'python3-yourdfpy-pip', 'pyarrow': 'python3-pyarrow-pip',
     'distributed': 'python3-distributed', 'psutil': 'python3-psutil',
+    'networkx': 'python3-networkx',
 }
 # Imported by tests from the repository's tests/ folder (pytest.ini's pythonpath), not packages.
 REPOSITORY_MODULES = {'reference_models', 'conftest'}

@@ -11,9 +11,11 @@ from robotica_kin.finite import finite_real
 
 __all__ = ['MAX_ANGULAR_RATE', 'MAX_FORCE_TORQUE', 'MAX_JOINT_ACCELERATION',
            'MAX_JOINT_POSITION', 'MAX_JOINT_VELOCITY', 'MAX_JOINTS', 'MAX_LATITUDE',
-           'MAX_LONGITUDE', 'MAX_SPEED', 'MAX_TIME_JUMP', 'bounded', 'bounded_array', 'StampGate']
+           'MAX_LONGITUDE', 'MAX_POSITION', 'MAX_SPEED', 'MAX_TIME_JUMP', 'bounded',
+           'bounded_array', 'StampGate']
 
 MAX_SPEED = 100.0              # [m/s] a linear speed (a car on a motorway: 36 m/s)
+MAX_POSITION = 1e7             # [m] a coordinate in a map or odometry frame (10 000 km)
 MAX_ANGULAR_RATE = 100.0       # [rad/s] a yaw rate or a steering rate (16 turns per second)
 MAX_JOINT_POSITION = 1e4       # [rad | m] a joint position (1600 turns of a revolute joint)
 MAX_JOINT_VELOCITY = 1e3       # [rad/s | m/s] a joint velocity

@@ -16,8 +16,8 @@ Topics: the pose in, from ``odom`` (nav_msgs/Odometry, the estimate) or, with ``
 the timing of a trajectory (trajectory tracking; otherwise it moves along the path at
 ``trajectory_tracking.reference_speed``); an empty path in a frame cancels the path (a
 planner that finds none sends one): the tracker stops and holds still (an empty path without a
-frame is malformed: refused, the previous path kept). Out: ``cmd_vel`` (geometry_msgs/Twist or, with
-``enable_stamped_cmd_vel`` (Nav2's parameter), geometry_msgs/TwistStamped in ``base_frame_id``
+frame is malformed: refused, the previous path kept). Out: ``cmd_vel`` (geometry_msgs/Twist or,
+with ``enable_stamped_cmd_vel`` (Nav2's parameter), geometry_msgs/TwistStamped in ``base_frame_id``
 stamped with the pose it answers, as Jazzy's diff_drive_controller takes it) and
 ``~/tracking_error`` (robotica_msgs/TrackingError, stamped with the pose it was computed from;
 none from a law that follows no path, whose errors are NaN: ``open_loop``).

@@ -44,7 +44,7 @@ def test_an_unknown_executable_is_one_line_naming_those_of_the_package(capsys):
     assert code == 2 and out == ''
     assert err == ("robotica node: error: no executable 'simulator' in robotica_ctrl; there "
                    'are: joint_controller, joint_trajectory_publisher, path_publisher, '
-                   'path_tracker, reactive_navigator\n')
+                   'path_tracker, planner, reactive_navigator\n')
 
 
 def test_list_and_completion_offer_the_same_names(capsys):

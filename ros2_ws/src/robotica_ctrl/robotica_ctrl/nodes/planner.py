@@ -1,0 +1,192 @@
+"""
+Planner node: a path from the robot to a goal on the world model, for a tracker (book ch. 12).
+
+The world is the scenario's (``world_file``: a YAML with a ``world:`` section or a map_server
+map) or, without one, the latest ``/map`` (nav_msgs/OccupancyGrid, transient local: the world
+publisher's or a mapping node's). The start is the robot's pose (``odom``, nav_msgs/Odometry:
+remap it to ``ground_truth/odom`` for the simulator's truth), or ``start`` before any pose
+arrives; the goal is ``goal`` or the latest ``goal_pose`` (geometry_msgs/PoseStamped, in the
+map frame, as RViz's and Foxglove's goal tools send it).
+
+It plans with :func:`robotica_ctrl.planning.planners.plan_path` (``method`` and the options of
+its :data:`~robotica_ctrl.planning.planners.PLANNER_PARAMETERS`) when it has a world, a start
+and a goal, and again when the goal changes or a new map blocks the path it follows. Out:
+``plan`` (nav_msgs/Path, transient local: a tracker's ``~/path``), empty when there is no path
+so that the tracker stops; ``~/status`` (robotica_msgs/PlanStatus, transient local: found or
+the reason, cost, expansions, whether the search's bound was hit, the time it took) and
+``~/markers`` (visualization_msgs/MarkerArray: the path, the cells A* expanded, start and goal).
+Every search is bounded (``max_expansions``, ``max_seconds``): a plan never hangs the node.
+"""
+import time
+from typing import Any
+
+from geometry_msgs.msg import Point, Pose, PoseStamped
+from nav_msgs.msg import OccupancyGrid as OccupancyGridMsg, Odometry, Path
+import numpy as np
+from rclpy.experimental import EventsExecutor
+from robotica_ctrl.planning.plan_result import PlanResult
+from robotica_ctrl.planning.planners import plan_path, PLANNER_PARAMETERS
+from robotica_kin.bounds import bounded_array, MAX_POSITION
+from robotica_kin.ros.convert import (path_message, pose2d_from_odometry, quaternion_to_yaw,
+                                      yaw_to_quaternion)
+from robotica_kin.ros.entry_point import run_node
+from robotica_kin.ros.grid_messages import grid_from_message
+from robotica_kin.ros.guarded import GuardedNode
+from robotica_kin.ros.parameters import declare, declare_specs
+from robotica_kin.ros.qos import LATCHED_QOS, STREAM_SUB_QOS
+from robotica_kin.world.queries import swept_collision
+from robotica_kin.world.shapes import World
+from robotica_kin.world.world_file import load_world_file
+from robotica_msgs.msg import PlanStatus
+from std_msgs.msg import ColorRGBA
+from visualization_msgs.msg import Marker, MarkerArray
+
+MAX_EXPANDED_MARKERS = 20_000
+"""At most this many expanded cells are drawn (evenly spaced): a marker stays small."""
+
+
+def _pose(x: float, y: float, yaw: float = 0.0) -> Pose:
+    pose = Pose()
+    pose.position.x, pose.position.y = float(x), float(y)
+    pose.orientation = yaw_to_quaternion(float(yaw))
+    return pose
+
+
+class PlannerNode(GuardedNode):
+    """Plan on the world model and publish the path, its status and its markers."""
+
+    def __init__(self) -> None:
+        super().__init__('planner')
+        self._options = declare_specs(self, PLANNER_PARAMETERS)
+        self._frame = declare(self, 'frame_id', 'map', 'Frame of the map, the path and goals',
+                              read_only=True)
+        path = declare(self, 'world_file', '', 'The world: a YAML with a world: section (a '
+                       'scenario) or a map_server map; empty: the latest /map', read_only=True)
+        self._start = self._point(declare(self, 'start', [0.0, 0.0], 'Start (x, y) [m] until '
+                                          'a pose arrives on odom', read_only=True), 'start')
+        goal = declare(self, 'goal', [0.0], 'Goal (x, y) or (x, y, yaw) [m, rad]; one value: '
+                       'none until goal_pose', read_only=True)
+        self._goal = None if len(goal) < 2 else self._point(goal[:2], 'goal')
+        self._world: World | None = load_world_file(path) if path else None
+        self._path: np.ndarray | None = None
+        self._plan_pub = self.create_publisher(Path, 'plan', LATCHED_QOS)
+        self._status_pub = self.create_publisher(PlanStatus, '~/status', LATCHED_QOS)
+        self._markers_pub = self.create_publisher(MarkerArray, '~/markers', LATCHED_QOS)
+        if self._world is None:
+            self.create_subscription(OccupancyGridMsg, '/map', self._on_map, LATCHED_QOS)
+        self.create_subscription(Odometry, 'odom', self._on_odom, STREAM_SUB_QOS)
+        self.create_subscription(PoseStamped, 'goal_pose', self._on_goal, LATCHED_QOS)
+        self.get_logger().info(
+            f"planner {self._options['method']!r} on "
+            + (f'the world of {path}' if path else '/map') + ', goal '
+            + ('from goal_pose' if self._goal is None else str(self._goal.tolist())))
+        self._plan()
+
+    @staticmethod
+    def _point(value: Any, name: str) -> np.ndarray:
+        point = bounded_array(name, value, MAX_POSITION)
+        if point.shape != (2,):
+            raise ValueError(f'{name} must be (x, y) [m], got {list(value)}')
+        return point
+
+    # -- inputs ---------------------------------------------------------------------------
+    def _on_map(self, msg: OccupancyGridMsg) -> None:
+        if msg.header.frame_id and msg.header.frame_id != self._frame:
+            raise ValueError(f'/map in frame {msg.header.frame_id!r}, not {self._frame!r}')
+        self._world = World(grid=grid_from_message(msg))
+        self.get_logger().info('new map: '
+                               f'{msg.info.width} x {msg.info.height} cells of '
+                               f'{msg.info.resolution:g} m')
+        if self._path is None or self._blocked(self._path):
+            self._plan()
+
+    def _on_odom(self, msg: Odometry) -> None:
+        pose = pose2d_from_odometry(msg)
+        self._start = self._point(pose[:2], 'pose')
+
+    def _on_goal(self, msg: PoseStamped) -> None:
+        if msg.header.frame_id and msg.header.frame_id != self._frame:
+            raise ValueError(f'goal_pose in frame {msg.header.frame_id!r}, not {self._frame!r}')
+        goal = self._point([msg.pose.position.x, msg.pose.position.y], 'goal_pose')
+        quaternion_to_yaw(msg.pose.orientation)   # a malformed quaternion is refused here
+        self._goal = goal
+        self.get_logger().info(f'new goal ({goal[0]:.3f}, {goal[1]:.3f}) m')
+        self._plan()
+
+    def _blocked(self, path: np.ndarray) -> bool:
+        """Return whether the world now blocks ``path`` for the robot's disc."""
+        assert self._world is not None
+        radius = max(float(self._options['robot_radius']), 1e-3)
+        return any(swept_collision(self._world, radius, (*a, 0.0), (*b, 0.0)) is not None
+                   for a, b in zip(path[:-1], path[1:]))
+
+    # -- planning -------------------------------------------------------------------------
+    def _plan(self) -> None:
+        if self._world is None or self._goal is None:
+            return
+        began = time.monotonic()
+        result = plan_path(self._world, self._start, self._goal, self._options, time.monotonic)
+        elapsed = time.monotonic() - began
+        self._path = result.path
+        stamp = self.get_clock().now().to_msg()
+        path = path_message(result.path if result.found else np.zeros((0, 2)), self._frame)
+        path.header.stamp = stamp
+        self._plan_pub.publish(path)
+        self._status_pub.publish(self._status(result, elapsed, stamp))
+        self._markers_pub.publish(self._markers(result, stamp))
+        if result.found:
+            self.get_logger().info(f'path of {result.cost:.2f} m ({len(result.path)} poses), '
+                                   f'{result.expansions} expansions in {elapsed:.3f} s')
+        else:
+            self.get_logger().error(f'no path: {result.reason} (after {result.expansions} '
+                                    f'expansions, {elapsed:.3f} s); the tracker stops')
+
+    def _status(self, result: PlanResult, elapsed: float, stamp: Any) -> PlanStatus:
+        assert self._goal is not None
+        msg = PlanStatus(method=str(self._options['method']), found=result.found,
+                         reason=result.reason, cost=result.cost if result.found else 0.0,
+                         points=0 if result.path is None else len(result.path),
+                         expansions=int(result.expansions),
+                         budget_exhausted='budget was exhausted' in result.reason,
+                         planning_time=elapsed, start=_pose(*self._start),
+                         goal=_pose(*self._goal))
+        msg.header.stamp = stamp
+        msg.header.frame_id = self._frame
+        return msg
+
+    def _markers(self, result: PlanResult, stamp: Any) -> MarkerArray:
+        """Return the plan's markers: the path, the expanded cells, the start and the goal."""
+        markers = [Marker(ns=ns, action=Marker.DELETEALL) for ns in ('plan',)]
+        line = Marker(ns='plan', id=0, type=Marker.LINE_STRIP, action=Marker.ADD)
+        line.scale.x = 0.05
+        line.color = ColorRGBA(r=0.1, g=0.8, b=0.1, a=1.0)
+        if result.path is not None:
+            line.points = [Point(x=float(x), y=float(y)) for x, y in result.path[:, :2]]
+        markers.append(line)
+        expanded = result.details.get('expanded')
+        grid = None if self._world is None else self._world.grid
+        if expanded is not None and grid is not None and len(expanded):
+            cells = np.asarray(expanded)[::max(1, len(expanded) // MAX_EXPANDED_MARKERS)]
+            centres = grid.cell_to_world(cells)
+            dots = Marker(ns='plan', id=1, type=Marker.POINTS, action=Marker.ADD)
+            dots.scale.x = dots.scale.y = grid.resolution
+            dots.color = ColorRGBA(r=0.3, g=0.5, b=1.0, a=0.3)
+            dots.points = [Point(x=float(x), y=float(y)) for x, y in centres]
+            markers.append(dots)
+        for k, (point, color) in enumerate(((self._start, ColorRGBA(g=1.0, a=1.0)),
+                                            (self._goal, ColorRGBA(r=1.0, a=1.0)))):
+            if point is None:
+                continue
+            sphere = Marker(ns='plan', id=2 + k, type=Marker.SPHERE, action=Marker.ADD,
+                            pose=_pose(*point), color=color)
+            sphere.scale.x = sphere.scale.y = sphere.scale.z = 0.2
+            markers.append(sphere)
+        for marker in markers:
+            marker.header.frame_id = self._frame
+            marker.header.stamp = stamp
+        return MarkerArray(markers=markers)
+
+
+def main(args=None) -> None:
+    """Run the planner until Ctrl-C."""
+    run_node(PlannerNode, args, executor_factory=EventsExecutor)

@@ -1,0 +1,97 @@
+"""
+The planners by name, with their options as node parameters: the planner node's registry.
+
+The ``planner`` node plans with :func:`plan_path` on a :class:`~robotica_kin.world.shapes.World`
+(a scenario's world or the ``/map`` grid): the method named by ``method``, the obstacles grown by
+``robot_radius``, the work bounded by ``max_expansions`` and ``max_seconds``, and, with
+``smooth``, the path shortened by line of sight and smoothed for a disc of ``robot_radius``
+(:mod:`.path_shortcut`, :mod:`.path_smoothing`), never into an obstacle: a step that cannot
+keep the path free (the grid's path may graze an obstacle of the world's exact geometry) leaves
+it as it was, and ``details['smoothing']`` says why.
+
+========== ================================================== ======================
+method     planner                                            book
+========== ================================================== ======================
+``astar``  :func:`~.grid_astar.grid_astar` on the world's grid §12.6.2, (12.1)
+========== ================================================== ======================
+"""
+from typing import Any, Mapping, Optional
+
+import numpy as np
+from numpy.typing import ArrayLike
+from robotica_kin.parameter_specs import parameter_values, ParameterSpec
+from robotica_kin.world.rasterise import world_grid
+from robotica_kin.world.shapes import World
+
+from .grid_astar import grid_astar
+from .path_shortcut import shortcut_path
+from .path_smoothing import smooth_path
+from .plan_result import PlanResult, SearchBudget
+from .search_setup import Clock
+
+__all__ = ['PLANNER_METHODS', 'PLANNER_PARAMETERS', 'plan_path']
+
+PLANNER_METHODS = ('astar',)
+PLANNER_PARAMETERS: dict[str, ParameterSpec] = {
+    'method': ParameterSpec('astar', 'The planner (book ch. 12)', choices=PLANNER_METHODS),
+    'robot_radius': ParameterSpec(0.3, 'Radius of the robot [m]: obstacles are grown by it '
+                                  '(§12.4.4)', 0.0, 100.0),
+    'neighbours': ParameterSpec(8, 'A*: 8 or 16 neighbours of a cell (§12.6.2)', 8, 16),
+    'resolution': ParameterSpec(0.05, 'Cell size [m] of the grid drawn from a world without '
+                                'one', 0.001, 10.0),
+    'unknown_is_obstacle': ParameterSpec(True, 'Plan around unknown cells (-1) of a map'),
+    'smooth': ParameterSpec(True, 'Shorten the path by line of sight and smooth it, keeping '
+                            'robot_radius of clearance'),
+    'max_expansions': ParameterSpec(2_000_000, 'Bound on the nodes a search expands', 1,
+                                    1_000_000_000),
+    'max_seconds': ParameterSpec(5.0, 'Bound on the time of a search [s]', 1e-3, 3600.0),
+}
+"""The planner node's planning parameters (the options of :func:`plan_path`)."""
+
+
+def plan_path(world: World, start: ArrayLike, goal: ArrayLike,
+              options: Optional[Mapping[str, Any]] = None,
+              clock: Optional[Clock] = None) -> PlanResult:
+    """
+    Return the plan from ``start`` to ``goal`` (x, y [m], map frame) in ``world``.
+
+    ``options`` by the names of :data:`PLANNER_PARAMETERS` (missing ones default); ``clock``
+    (seconds, e.g. ``time.monotonic``) bounds the search's time, which the pure core reads from
+    no clock of its own.
+
+    Raises
+    ------
+    robotica_kin.parameter_specs.ParameterError
+        For an option out of its range or choices.
+    ValueError
+        For a start or goal that is not a finite point.
+
+    Examples
+    --------
+    >>> from robotica_kin.world.shapes import make_world
+    >>> room = make_world(walls=[[0, 0, 4, 0], [4, 0, 4, 4], [4, 4, 0, 4], [0, 4, 0, 0],
+    ...                          [2, 0, 2, 3]])
+    >>> plan = plan_path(room, [1.0, 1.0], [3.0, 1.0], {'robot_radius': 0.2})
+    >>> plan.found, round(plan.cost, 1) > 4.0
+    (True, True)
+
+    """
+    o = parameter_values(PLANNER_PARAMETERS, dict(options or {}))
+    budget = SearchBudget(int(o['max_expansions']), float(o['max_seconds']))
+    grid = world.grid if world.grid is not None and not len(world.segments) \
+        and not len(world.circles) else world_grid(world, o['resolution'])
+    result = grid_astar(grid, start, goal, int(o['neighbours']), o['robot_radius'],
+                        unknown_is_obstacle=o['unknown_is_obstacle'], budget=budget,
+                        clock=clock)
+    if not result.found or not o['smooth'] or result.path is None or len(result.path) < 3:
+        return result
+    footprint = max(o['robot_radius'], 1e-3)
+    path, steps = result.path, []
+    for improve in (shortcut_path, smooth_path):
+        better = improve(world, path, footprint, budget=budget, clock=clock)
+        steps.append(better.reason or 'done')
+        if better.found and better.path is not None:   # else keep the path as it is
+            path = better.path
+    length = float(np.sum(np.hypot(*np.diff(path, axis=0).T)))
+    return PlanResult(path, length, '', result.expansions, None,
+                      {**result.details, 'raw_path': result.path, 'smoothing': steps})
