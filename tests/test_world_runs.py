@@ -91,3 +91,22 @@ def test_a_sonar_misses_a_grazing_panel(tmp_path, ros_domain):
     assert metric(report, 'collisions') == 1
     assert metric(report, 'time_in_contact') > 1.0
     assert code == 1
+
+
+def test_a_planned_path_is_followed_to_the_goal(tmp_path, ros_domain):
+    # room_astar (issue 21): grid A* plans across the room, pure pursuit follows the plan.
+    bag = run(tmp_path, 'room_astar')
+    code, report = grade(bag, '--rubric', 'room_astar')
+    assert code == 0, report
+    got = messages(bag, '/planner/status', '/path', '/ground_truth/odom')
+    status = got['/planner/status'][-1]
+    assert status.found and status.reason == '' and status.method == 'astar'
+    path = got['/path'][-1].poses
+    assert status.points == len(path)
+    # The path's length is the cost it reports, and it starts and ends where it should.
+    length = sum(math.dist((a.pose.position.x, a.pose.position.y),
+                           (b.pose.position.x, b.pose.position.y)) for a, b in zip(path, path[1:]))
+    assert status.cost == pytest.approx(length, rel=1e-9)
+    assert length >= math.dist((0.5, 0.5), (7.0, 5.0))   # no shorter than the straight line
+    end = got['/ground_truth/odom'][-1].pose.pose.position
+    assert math.dist((end.x, end.y), (7.0, 5.0)) < 0.3

@@ -29,11 +29,13 @@ from robotica_ctrl.mobile import path_shapes
 from robotica_ctrl.mobile.reactive_navigation import NAVIGATOR_PARAMETERS, navigator_params
 from robotica_ctrl.mobile.tracking_laws import (check_gains, law_for_path, LAW_PARAMETERS,
                                                 TRACKER_PARAMETERS)
+from robotica_ctrl.planning.planners import PLANNER_PARAMETERS
 from robotica_ctrl.trajectory.joint_reference import reference_samples
 from robotica_kin.dh import as_dyn_model, DHModel
 from robotica_kin.mobile.odometry_fusion import ODOMETRY_PARAMETERS
 from robotica_kin.mobile.vehicles import GEOMETRY_PARAMETERS, STEERED_TYPES, vehicle_kinematics
-from robotica_kin.parameter_specs import check_parameters, ParameterError, ParameterSpec
+from robotica_kin.parameter_specs import (check_parameters, parameter_values, ParameterError,
+                                          ParameterSpec)
 from robotica_kin.robots import pp_robot, puma560, robot_by_name, two_link_arm
 from robotica_kin.world.world_section import world_from_mapping
 from robotica_sim.runs.roles import Role, role_contract, ROLE_SECTIONS, topic_name
@@ -87,6 +89,8 @@ LAW_TOPICS = {**{law: ('/joint_controller/adaptation',)
               **{law: ('/joint_controller/cartesian_control',)
                  for law in TASK_LAWS if law not in FORCE_LAWS}}
 CONTACT_WRENCH_TOPIC = '/contact_wrench'
+PLANNER_TOPICS = ('/planner/status', '/planner/markers')
+"""The planner's outcome and its markers, recorded in a run with a planner: section."""
 FT_SENSOR_TOPICS = ('/ft_sensor/wrench', '/ft_sensor/gauges')
 """The telemetry of a joint controller's law (robotica_ctrl.nodes.law_telemetry), recorded."""
 VISUALISATION_TOPICS = (*TF_TOPICS, MARKERS_TOPIC)
@@ -238,6 +242,8 @@ def recorded_topics(scenario: Scenario) -> tuple[str, ...]:
         topics[topics.index(TRACKING_ERROR_TOPIC)] = NAVIGATOR_STATE_TOPIC
     if scenario.world:
         topics += [MAP_TOPIC, WORLD_MARKERS_TOPIC, BUMPER_TOPIC]
+    if scenario.planner.method:
+        topics += list(PLANNER_TOPICS)
     for sensor, sensor_topics in SENSOR_TOPICS.items():
         if getattr(scenario.sensors, sensor).enabled:
             topics.extend(sensor_topics)
@@ -902,17 +908,48 @@ def _navigator(scenario: Scenario) -> NodeSpec:
     return NodeSpec('robotica_ctrl', 'reactive_navigator', 'reactive_navigator', params)
 
 
+def _planner(scenario: Scenario) -> NodeSpec:
+    """
+    Return the planner node of a scenario with a ``planner:`` section, its values checked.
+
+    It plans in the scenario's world from the robot's initial pose to ``planner.goal`` (and
+    again from the true pose when the goal changes), publishing on ``/path``: the tracker follows
+    it and the grading measures the cross-track error against it.
+    """
+    where = scenario.source or scenario.name
+    spec = scenario.planner
+    goal = _numbers(list(spec.goal), f'{where}: planner.goal')
+    if len(goal) != 2:
+        raise ScenarioError(f'{where}: planner.goal must be (x, y) [m], got {list(spec.goal)}')
+    options = {'method': spec.method, **_dotted('', spec.options, where, 'planner.',
+                                                PLANNER_PARAMETERS)}
+    _node_check(where, 'planner', {name: f'planner.{name}' for name in options},
+                lambda: parameter_values(PLANNER_PARAMETERS, options))
+    x0, y0, _ = scenario.robot.initial_pose
+    return NodeSpec('robotica_ctrl', 'planner', 'planner', {
+        **options, 'world_file': str(scenario.source), 'start': [float(x0), float(y0)],
+        'goal': goal, 'frame_id': scenario.path.frame_id},
+        remappings={'plan': '/path', 'odom': '/ground_truth/odom'}, use_sim_time=False)
+
+
 def _plan_mobile(scenario: Scenario) -> list[NodeSpec]:
     where = scenario.source or scenario.name
     robot = scenario.robot
     x0, y0, theta0 = robot.initial_pose
     pose = {'initial_pose.x': x0, 'initial_pose.y': y0, 'initial_pose.theta': theta0}
-    points, times = reference_path(scenario)
     gains = _tracker_parameters(scenario)
-    # The tracker takes or refuses the path when it arrives, not at start-up: refused (a path
-    # of fewer than two distinct points), the robot would hold still for the whole run.
-    _node_check(where, 'path', {}, lambda: law_for_path(
-        scenario.tracker.law, points, _law_gains(scenario.tracker.law, gains), times))
+    if scenario.planner.method:
+        path_source = _planner(scenario)
+    else:
+        points, times = reference_path(scenario)
+        # The tracker takes or refuses the path when it arrives, not at start-up: refused (a
+        # path of fewer than two distinct points), the robot would hold still for the whole run.
+        _node_check(where, 'path', {}, lambda: law_for_path(
+            scenario.tracker.law, points, _law_gains(scenario.tracker.law, gains), times))
+        path_source = NodeSpec('robotica_ctrl', 'path_publisher', 'path_publisher', {
+            'x': [p[0] for p in points], 'y': [p[1] for p in points],
+            **({} if times is None else {'t': times}),
+            'frame_id': scenario.path.frame_id}, use_sim_time=False)
     simulator = {
         'vehicle.type': robot.type, **{f'vehicle.{name}': getattr(robot, ROBOT_KEYS[name])
                                        for name in GEOMETRY_PARAMETERS},
@@ -944,10 +981,7 @@ def _plan_mobile(scenario: Scenario) -> list[NodeSpec]:
     steered = robot.type in STEERED_TYPES
     vehicle = {key: value for key, value in simulator.items() if key.startswith('vehicle.')}
     return [
-        NodeSpec('robotica_ctrl', 'path_publisher', 'path_publisher', {
-            'x': [p[0] for p in points], 'y': [p[1] for p in points],
-            **({} if times is None else {'t': times}),
-            'frame_id': scenario.path.frame_id}, use_sim_time=False),
+        path_source,
         *sensors,
         NodeSpec('robotica_sim', 'odometry', 'odometry', estimator),
         _navigator(scenario) if scenario.navigator.behaviour else

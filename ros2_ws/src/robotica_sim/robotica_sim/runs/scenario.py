@@ -218,6 +218,20 @@ class NavigatorSpec:
     gains: dict = field(default_factory=dict)
 
 
+@dataclass(frozen=True)
+class PlannerSpec:
+    """
+    A planner instead of the fixed path (book ch. 12): its method, the goal and its options.
+
+    ``options`` are the planner node's parameters by name (``robot_radius``, ``neighbours``,
+    ``smooth``, ...); an empty ``method``: no planner, the ``path`` section's path is followed.
+    """
+
+    method: str = ''
+    goal: tuple[float, ...] = ()                   # (x, y) [m] in the world's frame
+    options: dict = field(default_factory=dict)
+
+
 ARM_MODELS = ('puma560', 'two_link_arm', 'pp_robot')
 MIN_STEP_PERIOD = 1e-4              # [s] simulated
 MAX_STEPS = 10_000_000              # simulation steps of a run (duration / step_period)
@@ -225,7 +239,7 @@ SEED_MAX = (2**31 - 1) // 10 - 1
 """The largest seed: each sensor emulator gets 10 seed + k (k < 10), which its ``seed``
 parameter takes up to 2**31 - 1."""
 INT64_MAX = 2**63 - 1               # an integer parameter of a node is int64
-MOBILE_SECTIONS = ('path', 'sensors', 'odometry', 'tracker', 'navigator', 'world')
+MOBILE_SECTIONS = ('path', 'sensors', 'odometry', 'tracker', 'navigator', 'world', 'planner')
 MAX_ANSWER_TIMEOUT = 600.0          # [s] of an external node's answer_timeout
 ARM_SECTIONS = ('arm', 'reference', 'controller')
 
@@ -296,6 +310,7 @@ class Scenario:
     odometry: OdometrySpec = OdometrySpec()
     tracker: TrackerSpec = TrackerSpec()
     navigator: NavigatorSpec = NavigatorSpec()
+    planner: PlannerSpec = PlannerSpec()
     world: dict = field(default_factory=dict)     # obstacles: robotica_kin.world.world_section
     arm: ArmSpec = ArmSpec()
     reference: ReferenceSpec = ReferenceSpec()
@@ -479,7 +494,8 @@ def _normalise(data: dict) -> dict:
                                  ('controller', ('law', 'model_masses', 'use_friction',
                                                  'trial_period', 'task', 'cartesian',
                                                  'external'), 'gains'),
-                                 ('navigator', ('behaviour',), 'gains')):
+                                 ('navigator', ('behaviour',), 'gains'),
+                                 ('planner', ('method', 'goal'), 'options')):
         if isinstance(data.get(section), dict):
             values = dict(data[section])
             data[section] = {free: values, **{k: values.pop(k) for k in fixed if k in values}}
@@ -498,6 +514,12 @@ def _check_sections(data: dict, where: str) -> None:
     if 'navigator' in data and 'tracker' in data:
         raise ScenarioError(f'{where}: sections navigator and tracker: the reactive navigator '
                             'replaces the path tracker; give one of them')
+    if 'planner' in data and ('navigator' in data or 'path' in data):
+        other = 'navigator' if 'navigator' in data else 'path'
+        raise ScenarioError(f'{where}: sections planner and {other}: the planner makes the path '
+                            'the tracker follows; give one of them')
+    if 'planner' in data and 'world' not in data:
+        raise ScenarioError(f'{where}: section planner needs a world: section to plan in')
     for section in ('tracker', 'odometry', 'controller'):
         values = data.get(section)
         if isinstance(values, dict) and 'external' in values and len(values) > 1:

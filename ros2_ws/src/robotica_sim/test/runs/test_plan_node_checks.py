@@ -88,6 +88,17 @@ CASES = [
      'controller.mu = [300.0, 300.0] makes the learning diverge'),
     ('trial longer than the run', 'ej8_9', {'controller.trial_period': 1000},
      'controller.trial_period must be 0 (one trial) or in [step_period, duration] s'),
+    # planner (robotica_ctrl.planning.planners)
+    ('planner goal of 3 numbers', 'room_astar', {'planner.goal': [1, 2, 3]},
+     'planner.goal must be (x, y) [m]'),
+    ('unknown planner method', 'room_astar', {'planner.method': 'rrt'},
+     "planner.method must be one of ('astar',"),
+    ('unknown planner option', 'room_astar', {'planner.horizon': 3},
+     'unknown key planner.horizon; known: '),
+    ('negative robot radius', 'room_astar', {'planner.robot_radius': -1},
+     'planner.robot_radius must be in [0, 100]'),
+    ('planner and a path', 'room_astar', {'path': {'shape': 'straight_line'}},
+     'sections planner and path'),
     # arm_simulator's environment and the F/T sensor
     ('surface normal zero', 'ej8_10', {'arm.environment.normal': [0, 0, 0]},
      'arm.environment.normal must not be zero'),
@@ -192,6 +203,14 @@ def no_process(monkeypatch):
     monkeypatch.setattr(ProcessSupervisor, 'start',
                         lambda self, name, argv: started.append(name))
     return started
+
+
+def test_a_planner_needs_a_world(tmp_path):
+    data = yaml.safe_load(resolve_scenario_path('room_astar').read_text())
+    del data['world']
+    (tmp_path / 'no_world.yaml').write_text(yaml.safe_dump(data))
+    with pytest.raises(ScenarioError, match='section planner needs a world: section'):
+        load_scenario(str(tmp_path / 'no_world.yaml'))
 
 
 def test_the_shipped_bases_are_valid(tmp_path):
