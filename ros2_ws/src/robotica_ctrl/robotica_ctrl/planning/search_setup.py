@@ -69,8 +69,12 @@ class BudgetMeter:
         """Return why the search must stop after ``expansions``, or '' if it may go on."""
         if expansions >= self.budget.max_expansions:
             return f'the search budget was exhausted: {expansions} expansions, the most allowed'
+        return self.overtime(f' (after {expansions} expansions)')
+
+    def overtime(self, after: str = '') -> str:
+        """Return why the search must stop for its time (``after`` appended), or ''."""
         elapsed = self.elapsed()
         if elapsed > self.budget.max_seconds:
             return (f'the search budget was exhausted: {elapsed:.3g} s, more than the '
-                    f'{self.budget.max_seconds:g} s allowed (after {expansions} expansions)')
+                    f'{self.budget.max_seconds:g} s allowed{after}')
         return ''
