@@ -16,11 +16,12 @@ from robotica_kin.world.queries import (
     swept_collision)
 from robotica_kin.world.raycast import cast_rays, RayHits
 from robotica_kin.world.shapes import box_polygon, make_world, validate_polygon, World
+from robotica_kin.world.solids import Box, Cylinder, Cylsphere, Sphere
 from robotica_kin.world.world_section import world_from_mapping
 
-__all__ = ['OccupancyGrid', 'OccupancyMap', 'OccupancyMappingParams', 'Quadtree',
-           'QuadtreeGraph', 'RayHits', 'World', 'WorldError', 'box_polygon', 'build_quadtree',
-           'cast_rays', 'distance_to_obstacles',
+__all__ = ['Box', 'Cylinder', 'Cylsphere', 'OccupancyGrid', 'OccupancyMap',
+           'OccupancyMappingParams', 'Quadtree', 'QuadtreeGraph', 'RayHits', 'Sphere', 'World',
+           'WorldError', 'box_polygon', 'build_quadtree', 'cast_rays', 'distance_to_obstacles',
            'evidence_to_percent', 'footprint_collides', 'footprint_distance', 'grow',
            'load_map', 'log_odds_update', 'make_world', 'percent_to_evidence',
            'point_in_obstacle', 'swept_collision', 'validate_polygon', 'world_from_mapping',
