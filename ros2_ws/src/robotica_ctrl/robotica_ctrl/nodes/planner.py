@@ -27,6 +27,7 @@ from rclpy.experimental import EventsExecutor
 from robotica_ctrl.planning.plan_result import PlanResult
 from robotica_ctrl.planning.planners import plan_path, PLANNER_PARAMETERS
 from robotica_kin.bounds import bounded_array, MAX_POSITION
+from robotica_kin.parameter_specs import parameter_values
 from robotica_kin.ros.convert import (path_message, pose2d_from_odometry, quaternion_to_yaw,
                                       yaw_to_quaternion)
 from robotica_kin.ros.entry_point import run_node
@@ -57,7 +58,8 @@ class PlannerNode(GuardedNode):
 
     def __init__(self) -> None:
         super().__init__('planner')
-        self._options = declare_specs(self, PLANNER_PARAMETERS)
+        self._options = parameter_values(PLANNER_PARAMETERS, declare_specs(
+            self, PLANNER_PARAMETERS))   # the choices and ranges rclpy does not check
         self._frame = declare(self, 'frame_id', 'map', 'Frame of the map, the path and goals',
                               read_only=True)
         path = declare(self, 'world_file', '', 'The world: a YAML with a world: section (a '
@@ -66,6 +68,8 @@ class PlannerNode(GuardedNode):
                                           'a pose arrives on odom', read_only=True), 'start')
         goal = declare(self, 'goal', [0.0], 'Goal (x, y) or (x, y, yaw) [m, rad]; one value: '
                        'none until goal_pose', read_only=True)
+        if len(goal) not in (1, 2, 3):
+            raise ValueError(f'goal must be (x, y) or (x, y, yaw), got {len(goal)} values')
         self._goal = None if len(goal) < 2 else self._point(goal[:2], 'goal')
         self._world: World | None = load_world_file(path) if path else None
         self._path: np.ndarray | None = None
