@@ -8,6 +8,13 @@ Every planner returns a :class:`~.plan_result.PlanResult`: a path with its cost,
 the reason, and what the search did (expanded nodes, time, whether a bound on work was hit).
 """
 
+from .continuous_curvature import cc_turn, continuous_curvature_path, sharpness_bound
+from .cubic_spiral import cubic_spiral
+from .path_collision import polyline_collision, pose_collision
+from .path_shortcut import shortcut_path
+from .path_smoothing import smooth_path
 from .plan_result import PlanResult, SearchBudget
 
-__all__ = ['PlanResult', 'SearchBudget']
+__all__ = ['PlanResult', 'SearchBudget', 'cc_turn', 'continuous_curvature_path', 'cubic_spiral',
+           'polyline_collision', 'pose_collision', 'sharpness_bound', 'shortcut_path',
+           'smooth_path']

@@ -17,6 +17,7 @@ import math
 import networkx as nx
 import numpy as np
 import pytest
+from robotica_ctrl.planning.continuous_curvature import cc_turn, continuous_curvature_path
 from robotica_ctrl.planning.path_shortcut import drop_collinear, shortcut_path
 from robotica_ctrl.planning.path_smoothing import resample_polyline, smooth_path
 from robotica_ctrl.planning.plan_result import SearchBudget
@@ -320,3 +321,26 @@ def test_smoothing_refuses_a_colliding_path_and_stops_at_its_budget(staircase):
 def test_smoothing_refuses_bad_input(kwargs, match):
     with pytest.raises(ValueError, match=match):
         smooth_path(world(), [[0.5, 0.5], [1.0, 0.5]], 0.2, **kwargs)
+
+
+# ---------------------------------------------------------------- grid path to vehicle path
+
+
+def test_a_grid_path_becomes_a_free_continuous_curvature_path():
+    """
+    Plan with the margin a turn cuts, shortcut keeping it, round the corners: still free.
+
+    A right-angle turn at κ_max = 2 1/m, σ_max = 8 1/m² leaves its corner by 0.214 m; the
+    grid path is planned for a disc of r + that margin, the shortcut keeps the margin, and the
+    rounded path (turns of 67-74 degrees) stays clear of every obstacle for the disc r.
+    """
+    kappa, sigma = 2.0, 8.0
+    margin = cc_turn(math.pi / 2, kappa, sigma).deviation
+    staircase = grid_path((0.6, 0.7), (5.4, 3.3), 0.2 + margin)
+    short = shortcut_path(world(), staircase, 0.2, clearance=margin)
+    assert turning(short.path).max() < math.pi / 2
+    result = continuous_curvature_path(short.path, kappa, sigma, ds=0.02, world=world(),
+                                       footprint=0.2)
+    assert result.found, result.reason
+    assert np.abs(result.details['curvature']).max() <= kappa + 1e-12
+    assert disc_clearances(result.path[:, :2], 0.2).min() > 0.0     # measured: 0.224 m
