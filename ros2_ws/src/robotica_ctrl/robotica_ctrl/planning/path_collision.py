@@ -88,9 +88,12 @@ def polyline_collision(world: World, footprint: Footprint, points: ArrayLike,
     (1, 0.25)
     >>> polyline_collision(wall, 0.5, [[0, 0], [1, 0], [1, 3]]) is None
     True
+    >>> polyline_collision(wall, 0.5, [[0, 0], [1, 0], [1, 3]], clearance=0.6)[0]  # 0.9 m in
+    0
     """
     p = check_path_points(points)
-    grown = grow(world, check_clearance(clearance)) if clearance > 0.0 else world
+    margin = check_clearance(clearance)
+    grown = grow(world, margin) if margin > 0.0 else world
     steps = np.diff(p, axis=0)
     moving = np.flatnonzero(np.hypot(steps[:, 0], steps[:, 1]) > 0.0)
     if len(moving) == 0:
@@ -119,7 +122,8 @@ def pose_collision(world: World, footprint: Footprint, poses: ArrayLike,
     q = np.asarray(poses, dtype=np.float64)
     if q.ndim != 2 or q.shape[1] != 3 or len(q) < 1 or not np.isfinite(q).all():
         raise ValueError(f'poses must be finite with shape (N, 3), N >= 1, got {q.shape}')
-    grown = grow(world, check_clearance(clearance)) if clearance > 0.0 else world
+    margin = check_clearance(clearance)
+    grown = grow(world, margin) if margin > 0.0 else world
     if len(q) == 1:
         return (0, 0.0) if footprint_collides(grown, footprint, q[0]) else None
     for i in range(len(q) - 1):

@@ -18,6 +18,7 @@ import networkx as nx
 import numpy as np
 import pytest
 from robotica_ctrl.planning.continuous_curvature import cc_turn, continuous_curvature_path
+from robotica_ctrl.planning.path_collision import polyline_collision, pose_collision
 from robotica_ctrl.planning.path_shortcut import drop_collinear, shortcut_path
 from robotica_ctrl.planning.path_smoothing import resample_polyline, smooth_path
 from robotica_ctrl.planning.plan_result import SearchBudget
@@ -237,6 +238,11 @@ def test_collinear_vertices_go_first():
 def test_shortcut_refuses_bad_input(points, clearance, match):
     with pytest.raises(ValueError, match=match):
         shortcut_path(world(), points, 0.2, clearance=clearance)
+    if match == 'clearance':
+        with pytest.raises(ValueError, match=match):
+            polyline_collision(world(), 0.2, points, clearance=clearance)
+        with pytest.raises(ValueError, match=match):
+            pose_collision(world(), 0.2, [[0.5, 0.5, 0.0]], clearance=clearance)
 
 
 # ---------------------------------------------------------------- smoothing
