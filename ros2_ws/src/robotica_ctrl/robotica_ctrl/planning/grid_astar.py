@@ -42,7 +42,8 @@ from typing import Any, Optional, Sequence
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from robotica_ctrl.planning.plan_result import PlanResult, SearchBudget
-from robotica_ctrl.planning.search_setup import BudgetMeter, Clock, planar_point
+from robotica_ctrl.planning.search_setup import (BudgetMeter, Clock, IN_OBSTACLE, planar_point,
+                                                 robot_radius as radius_value)
 from robotica_kin.world import grow, OccupancyGrid, World
 
 __all__ = ['NEIGHBOURHOODS', 'astar_cells', 'grid_astar', 'grid_moves', 'grid_obstacles']
@@ -118,16 +119,14 @@ def grid_obstacles(grid: OccupancyGrid, occupied_threshold: Optional[int] = None
     else:
         raise ValueError(f'occupied_threshold must be an integer in 0..100 [%], got '
                          f'{occupied_threshold!r}')
-    if not (isinstance(robot_radius, (int, float)) and math.isfinite(robot_radius)
-            and robot_radius >= 0.0):
-        raise ValueError(f'robot_radius must be >= 0 m, got {robot_radius!r}')
+    radius = radius_value(robot_radius)
     blocked = grid.data >= threshold
     if unknown_is_obstacle:
         blocked |= grid.data < 0
-    if robot_radius > 0.0 and blocked.any():
+    if radius > 0.0 and blocked.any():
         binary = OccupancyGrid(np.where(blocked, 100, 0).astype(np.int8), grid.resolution,
                                grid.origin, grid.occupied_thresh, grid.free_thresh)
-        grown = grow(World(grid=binary), robot_radius).grid
+        grown = grow(World(grid=binary), radius).grid
         assert grown is not None
         blocked = grown.occupied.copy()
     return np.asarray(blocked)
@@ -160,8 +159,7 @@ def _endpoint_reason(blocked: NDArray[np.bool_], cell: tuple[int, int], role: st
     if not (0 <= c < cols and 0 <= r < rows):
         return f'the {role} {label} is off the map ({cols} x {rows} cells)'
     if blocked[r, c]:
-        what = 'the start is in collision' if role == 'start' else 'the goal is in an obstacle'
-        return f'{what}: {label} is an obstacle cell'
+        return f'{IN_OBSTACLE[role]}: {label} is an obstacle cell'
     return ''
 
 

@@ -1,8 +1,9 @@
 """
 What every planner of this package does before and while it searches (book §12.6-§12.7).
 
-* :func:`planar_point` checks a start or goal (x, y) [m] of the map frame (ValueError, one
-  message naming it);
+* :func:`planar_point` checks a start or goal (x, y) [m] of the map frame, and
+  :func:`robot_radius` a circular robot's radius (ValueError, one message naming it);
+  :data:`IN_OBSTACLE` words the reason when either end lies in an obstacle;
 * :class:`BudgetMeter` holds a :class:`~.plan_result.SearchBudget` against the work done: the
   expansions counted by the planner and, when the caller gives a ``clock`` (a function returning
   seconds, e.g. ``time.monotonic``; the pure core reads none), the time since the search began.
@@ -17,10 +18,14 @@ from numpy.typing import ArrayLike, NDArray
 
 from robotica_ctrl.planning.plan_result import SearchBudget
 
-__all__ = ['BudgetMeter', 'Clock', 'planar_point']
+__all__ = ['BudgetMeter', 'Clock', 'IN_OBSTACLE', 'planar_point', 'robot_radius']
 
 Clock = Callable[[], float]
 """A function returning the time [s] (monotonic): the time bound of a search is read from it."""
+
+
+IN_OBSTACLE = {'start': 'the start is in collision', 'goal': 'the goal is in an obstacle'}
+"""How a "no path" reason begins when the start or the goal lies in an obstacle."""
 
 
 def planar_point(name: str, value: ArrayLike) -> NDArray[np.float64]:
@@ -41,6 +46,19 @@ def planar_point(name: str, value: ArrayLike) -> NDArray[np.float64]:
     if point.shape != (2,) or not np.isfinite(point).all():
         raise ValueError(f'{name} must be a finite point (x, y) [m], got {value!r}')
     return point
+
+
+def robot_radius(value: float) -> float:
+    """
+    Return a circular robot's radius r [m] >= 0 as a float, or raise ValueError.
+
+    >>> robot_radius(0), robot_radius(0.25)
+    (0.0, 0.25)
+    """
+    if not (isinstance(value, (int, float)) and not isinstance(value, bool)
+            and math.isfinite(value) and value >= 0.0):
+        raise ValueError(f'robot_radius must be >= 0 m, got {value!r}')
+    return float(value)
 
 
 class BudgetMeter:

@@ -43,12 +43,12 @@ from typing import Any, Optional
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from robotica_ctrl.planning.plan_result import PlanResult, SearchBudget
-from robotica_ctrl.planning.search_setup import BudgetMeter, Clock, planar_point
+from robotica_ctrl.planning.roadmap_search import roadmap_path
+from robotica_ctrl.planning.search_setup import (BudgetMeter, Clock, IN_OBSTACLE, planar_point,
+                                                 robot_radius as radius_value)
 from robotica_kin.world import World
 from robotica_kin.world.segment_geometry import point_segment_distance, points_in_polygon
 from robotica_kin.world.shapes import polygon_edges
-from scipy.sparse import csr_matrix
-from scipy.sparse.csgraph import dijkstra
 from scipy.spatial import ConvexHull
 
 __all__ = ['disc_polygon', 'grown_obstacles', 'visibility_graph']
@@ -107,10 +107,7 @@ def grown_obstacles(world: World, robot_radius: float = 0.0, sides: int = 16
     if world.grid is not None:
         raise ValueError('the visibility graph plans among walls, polygons and circles; a '
                          'world with an occupancy grid needs a grid planner (grid_astar)')
-    if not (isinstance(robot_radius, (int, float)) and math.isfinite(robot_radius)
-            and robot_radius >= 0.0):
-        raise ValueError(f'robot_radius must be >= 0 m, got {robot_radius!r}')
-    r = world.inflation + float(robot_radius)
+    r = world.inflation + radius_value(robot_radius)
     disc = disc_polygon(r, sides) if r > 0.0 else None
     pieces: list[NDArray[np.float64]] = []
     for polygon in world.polygons:
@@ -347,10 +344,8 @@ def visibility_graph(world: World, start: ArrayLike, goal: ArrayLike,
     ends_inside = _strictly_inside(np.vstack([s, g]), pieces, obstacles.tolerance)
     for inside, role, point in zip(ends_inside, ('start', 'goal'), (s, g)):
         if inside:
-            what = 'the start is in collision' if role == 'start' \
-                else 'the goal is in an obstacle'
-            return PlanResult.none(f'{what}: ({point[0]:g}, {point[1]:g}) m lies in an '
-                                   f'obstacle grown by {world.inflation + robot_radius:g} m',
+            return PlanResult.none(f'{IN_OBSTACLE[role]}: ({point[0]:g}, {point[1]:g}) m lies in '
+                                   f'an obstacle grown by {world.inflation + robot_radius:g} m',
                                    **details)
     corners = np.flatnonzero(~_strictly_inside(obstacles.corners, pieces,
                                                obstacles.tolerance))
@@ -379,20 +374,8 @@ def visibility_graph(world: World, start: ArrayLike, goal: ArrayLike,
         if reason:
             return PlanResult.none(reason, tested, **details)
     edges = _lane_edges(obstacles, points, corner, first, i, j, (left, right))
-    lengths = np.hypot(*(nodes[edges[:, 1]] - nodes[edges[:, 0]]).T)
-    keep = lengths > 0.0      # a zero-length edge joins a point to its copy: no move
-    edges, lengths = edges[keep], lengths[keep]
     details['graph'] = np.hstack([nodes[edges[:, 0]], nodes[edges[:, 1]]])
     if np.array_equal(s, g):
         return PlanResult(s[None, :], 0.0, expansions=len(i), details=details)
-    graph = csr_matrix((lengths, (edges[:, 0], edges[:, 1])), shape=(len(nodes),) * 2)
-    distance, previous = dijkstra(graph, directed=False, indices=0, return_predecessors=True)
-    if not math.isfinite(distance[1]):
-        return PlanResult.none('the goal is unreachable: no chain of visible segments joins it '
-                               'to the start', len(i), **details)
-    chain = [1]
-    while chain[-1] != 0:
-        chain.append(int(previous[chain[-1]]))
-    path = nodes[chain[::-1]]
-    return PlanResult(path, float(np.hypot(*np.diff(path, axis=0).T).sum()),
-                      expansions=len(i), details=details)
+    return roadmap_path(nodes, edges, len(i), details, 'the goal is unreachable: no chain of '
+                        'visible segments joins it to the start')
