@@ -23,8 +23,10 @@ completion (ours):
   cross the corner's line in the second arc (no θ* in [0, ξ]), or for the progressive mode
   whose curves are not arcs, the least offset is measured on the swept body sampled every
   1 cm (:func:`sampled_corner_offset`): the deepest point of the body ahead of the corner's
-  line. The obstacle's corner is that of the effective space (H' = H − 2 MS): longitudinally
-  MS inside the space, so the first manoeuvre keeps MS from it both ways.
+  line, plus the most a point of the body moves between two samples (a bound, not an
+  estimate: about 2 cm for a car). The obstacle's corner is that of the effective space
+  (H' = H − 2 MS): longitudinally MS inside the space, so the first manoeuvre keeps MS from
+  it both ways.
 * dy3 (:func:`approach`): the vehicle, at P_f's lateral offset dx2 from the parked
   obstacles' line, reverses to the positioning point: straight when dx2 = dx1 (dy3 = 0),
   else by a two-arc lateral shift X = |dx2 − dx1| (towards the curb when dx2 > dx1); dy3 is
@@ -97,11 +99,14 @@ def sampled_corner_offset(postures: ArrayLike, footprint: ArrayLike) -> float:
 
     ``postures`` (N, 3) relative to the start pose; ``footprint`` (v, 2) convex in
     ``base_link``. For each sample, the body cut by the line x = 0: its vertices ahead of it
-    and the crossings of its edges with it. The obstacle's corner level with P_f's start
-    clears the body when P_f starts farther than this from the corner's line.
+    and the crossings of its edges with it; the largest over the samples, plus the most any
+    point of the body moves between two samples (|Δp| + r_max |Δθ|): a corner crossing the
+    line between samples is deepest there, so the bare sampled value can fall short by that
+    much, never the bound. The obstacle's corner level with P_f's start clears the body when
+    P_f starts farther than this from the corner's line.
 
     >>> sampled_corner_offset([[0, 0, 0], [-2, -1, 0]], [[-1, -1], [2, -1], [2, 1], [-1, 1]])
-    2.0
+    4.23606797749979
     """
     q = np.asarray(postures, dtype=np.float64)
     body = np.asarray(footprint, dtype=np.float64)
@@ -113,7 +118,11 @@ def sampled_corner_offset(postures: ArrayLike, footprint: ArrayLike) -> float:
     crosses = (x * x2 <= 0.0) & (x != x2)
     t = np.divide(-x, x2 - x, out=np.zeros_like(x), where=crosses)
     deepest = np.maximum(deepest, np.where(crosses, -(y + t * (y2 - y)), -np.inf).max(axis=1))
-    return float(deepest.max())
+    step = np.diff(q, axis=0)
+    reach = float(np.hypot(body[:, 0], body[:, 1]).max())
+    moved = float((np.hypot(step[:, 0], step[:, 1]) + reach * np.abs(step[:, 2])).max(
+        initial=0.0))
+    return float(deepest.max()) + moved
 
 
 def positioning_offset(mode: ExecutionMode, size: float, margin: float) -> float:
@@ -166,7 +175,7 @@ def approach(mode: ExecutionMode, dx1: float, dx2: float,
     >>> a.dy3, a.pieces
     (0.0, ())
     >>> round(approach(GeometricMode(ParkingVehicle(), 0.6), 1.05, 1.6, 0.1).dy3, 3)
-    2.839
+    2.954
     """
     shift = finite_real('dx2', dx2) - finite_real('dx1', dx1)
     if abs(shift) <= 1e-9:
