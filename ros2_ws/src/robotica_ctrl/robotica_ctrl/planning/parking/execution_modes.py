@@ -27,8 +27,8 @@ and longitudinal shift (X, Y), the extents of the swept body (closed form for th
 :func:`.two_arc_extents`; from postures sampled every 1 cm for the progressive curve), the
 size that shifts by a given X, and the pieces to drive. :func:`sample_pieces` integrates the
 bicycle model of the equivalent tricycle, x' = v cos θ, y' = v sin θ, θ' = v tan φ / h1 (book
-(4.121), REP-103): each step is the exact arc of the step's middle steering angle (the
-odometry update of (4.93)), exact for the arcs and straights, second-order for the ramps.
+(4.121), REP-103): the heading in closed form (∫ tan φ ds = −ln cos φ / σ on a ramp), the
+position by Simpson's rule on each step.
 """
 
 from dataclasses import dataclass, replace
@@ -96,14 +96,27 @@ class SampledMotion:
     piece: NDArray[np.int64]
 
 
+def _turn(piece: Piece, u: NDArray[np.float64], wheelbase: float) -> NDArray[np.float64]:
+    """Return the heading change [rad] after driving ``u`` [m] into ``piece``: exact."""
+    phi0, phi1 = piece.steering_start, piece.steering_end
+    if abs(phi1 - phi0) <= 1e-9:
+        integral = math.tan(0.5 * (phi0 + phi1)) * u
+    else:                       # ∫ tan(φ0 + σ t) dt = (ln cos φ0 − ln cos φ(u)) / σ
+        rate = (phi1 - phi0) / piece.length
+        integral = (math.log(math.cos(phi0)) - np.log(np.cos(phi0 + rate * u))) / rate
+    return np.asarray(piece.direction * integral / wheelbase)
+
+
 def sample_pieces(start: ArrayLike, pieces: tuple[Piece, ...], wheelbase: float,
                   step: float) -> SampledMotion:
     """
-    Return the postures of driving ``pieces`` from ``start`` (x, y, θ), every ``step`` [m] at most.
+    Return the postures of driving ``pieces`` from ``start`` (x, y, θ), ``step`` [m] apart.
 
     The bicycle model of the equivalent tricycle with wheelbase h1 = ``wheelbase`` [m]; each
-    piece is cut into equal steps <= ``step``, each the exact arc of its middle steering angle
-    (see the module). Pieces of zero length are skipped.
+    piece is cut into equal steps <= ``step`` [m]. The heading is exact (∫ tan φ ds in
+    closed form, φ linear in s), the position Simpson's rule on each step (below 1e-10 m
+    for the arcs of a car at 5 cm, fourth order in the step for the ramps). Pieces of zero
+    length are skipped; ``steering`` per segment is φ at its middle.
 
     >>> m = sample_pieces([0, 0, 0], (Piece(1, math.pi / 2, math.atan(1.0), math.atan(1.0),
     ...                                     'arc'),), 1.0, 0.1)
@@ -116,29 +129,28 @@ def sample_pieces(start: ArrayLike, pieces: tuple[Piece, ...], wheelbase: float,
     h = finite_real('wheelbase', wheelbase)
     if not (h > 0.0 and finite_real('step', step) > 0.0):
         raise ValueError(f'wheelbase and step must be > 0 m, got {wheelbase!r}, {step!r}')
-    lengths, steering, directions, index = [], [], [], []
+    postures, steering, directions, index = [pose[None, :].copy()], [], [], []
+    heading, x, y = float(pose[2]), float(pose[0]), float(pose[1])
     for k, piece in enumerate(pieces):
         if piece.length <= 0.0:
             continue
         n = max(1, math.ceil(piece.length / step - 1e-9))
-        middle = (np.arange(n) + 0.5) / n
+        u = np.linspace(0.0, piece.length, 2 * n + 1)          # step ends and middles
+        theta = heading + _turn(piece, u, h)
+        c, s = piece.direction * np.cos(theta), piece.direction * np.sin(theta)
+        weight = piece.length / n / 6.0
+        dx = weight * (c[:-1:2] + 4.0 * c[1::2] + c[2::2])
+        dy = weight * (s[:-1:2] + 4.0 * s[1::2] + s[2::2])
+        postures.append(np.column_stack([x + np.cumsum(dx), y + np.cumsum(dy), theta[2::2]]))
+        heading, x, y = float(theta[-1]), float(postures[-1][-1, 0]), float(postures[-1][-1, 1])
         steering.append(piece.steering_start
-                        + (piece.steering_end - piece.steering_start) * middle)
-        lengths.append(np.full(n, piece.length / n))
+                        + (piece.steering_end - piece.steering_start) * (u[1::2] / piece.length))
         directions.append(np.full(n, piece.direction, dtype=np.int8))
         index.append(np.full(n, k, dtype=np.int64))
-    if not lengths:
-        return SampledMotion(pose[None, :].copy(), np.zeros(0), np.zeros(0, dtype=np.int8),
+    if not steering:
+        return SampledMotion(postures[0], np.zeros(0), np.zeros(0, dtype=np.int8),
                              np.zeros(0, dtype=np.int64))
-    ds = np.concatenate(lengths) * np.concatenate(directions)
-    phi = np.concatenate(steering)
-    turn = ds * np.tan(phi) / h
-    theta = pose[2] + np.concatenate([[0.0], np.cumsum(turn)])
-    chord = ds * np.sinc(turn / (2.0 * math.pi))        # sinc(x) = sin(πx) / (πx)
-    middle_heading = theta[:-1] + 0.5 * turn
-    x = pose[0] + np.concatenate([[0.0], np.cumsum(chord * np.cos(middle_heading))])
-    y = pose[1] + np.concatenate([[0.0], np.cumsum(chord * np.sin(middle_heading))])
-    return SampledMotion(np.column_stack([x, y, theta]), phi,
+    return SampledMotion(np.vstack(postures), np.concatenate(steering),
                          np.concatenate(directions), np.concatenate(index))
 
 
