@@ -24,11 +24,12 @@ cross.
 
 The test of a segment: it must not properly cross an obstacle's edge (the two segments cross
 at a point interior to both); where it passes through an obstacle vertex, it must not pass
-between the edges that meet there (into a polygon through its vertex, or through the joint of
-two walls); and each of its pieces between those vertices must have its midpoint outside every
-grown obstacle's interior. Vertices inside another obstacle are no nodes. At a vertex the
-edges that meet there cut the plane into sectors, and the vertex is one node per sector (a
-path may not pass from one to another there); a segment along an edge is a lane on each side.
+between the edges that meet there (into a polygon through its vertex, through the joint of
+two walls, or through a T-joint: an edge is cut at every vertex that lies on it); and each of
+its pieces between those vertices must have its midpoint outside every grown obstacle's
+interior. Vertices inside another obstacle are no nodes. At a vertex the edges that meet
+there cut the plane into sectors, and the vertex is one node per sector (a path may not pass
+from one to another there); a segment along an edge is a lane on each side.
 
 Only the segments tangent to the obstacles at their vertex ends are tested (the reduced
 visibility graph: a shortest path bends round a vertex only with the obstacle inside the bend,
@@ -169,6 +170,25 @@ def _strictly_inside(points: NDArray[np.float64], pieces: list[NDArray[np.float6
     return inside
 
 
+def _split_at(edges: NDArray[np.float64], corners: NDArray[np.float64],
+              tolerance: float) -> NDArray[np.float64]:
+    """Return the edges cut at every corner that lies inside one (a T-joint becomes a corner)."""
+    pieces = []
+    for first in range(0, len(edges), _CHUNK // 8 or 1):
+        block = edges[first:first + _CHUNK // 8]
+        a, e = block[:, None, 0:2], block[:, None, 2:4] - block[:, None, 0:2]
+        w = corners[None, :, :] - a
+        length2 = (e * e).sum(axis=2)
+        t = (w * e).sum(axis=2) / np.maximum(length2, tolerance ** 2)
+        off = np.abs(w[..., 0] * e[..., 1] - w[..., 1] * e[..., 0])
+        inside = (off <= tolerance * np.sqrt(length2)) & (t > 1e-12) & (t < 1.0 - 1e-12)
+        for k, edge in enumerate(block):
+            cuts = np.concatenate([[0.0], np.sort(t[k, inside[k]]), [1.0]])
+            points = edge[0:2] + cuts[:, None] * (edge[2:4] - edge[0:2])
+            pieces.append(np.hstack([points[:-1], points[1:]]))
+    return np.vstack(pieces) if pieces else np.zeros((0, 4))
+
+
 class _Obstacles:
     """
     The grown obstacles as the segment test needs them: edges, corners and their sectors.
@@ -185,7 +205,9 @@ class _Obstacles:
                  tolerance: float) -> None:
         self.pieces = pieces
         self.tolerance = tolerance
-        self.edges = np.vstack([walls, *(polygon_edges(p) for p in pieces)])
+        edges = np.vstack([walls, *(polygon_edges(p) for p in pieces)])
+        corners = np.unique(np.vstack([edges[:, 0:2], edges[:, 2:4]]), axis=0)
+        self.edges = _split_at(edges, corners, tolerance)
         ends = np.vstack([self.edges[:, 0:2], self.edges[:, 2:4]])
         self.corners, where = np.unique(ends, axis=0, return_inverse=True)
         where = where.ravel()

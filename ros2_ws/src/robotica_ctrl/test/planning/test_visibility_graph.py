@@ -152,6 +152,13 @@ def test_a_closed_triangle_of_walls_holds_its_inside():
     assert along.cost == pytest.approx(4.0)
 
 
+def test_no_path_through_a_t_joint_of_walls():
+    # The end of the wall x = 1 touches the wall y = 0 in its middle: no way through there.
+    plan = visibility_graph(World(walls=[[0, 0, 2, 0], [1, 0, 1, 1]]), [0.5, 0.5], [1.5, -0.5])
+    assert plan.path.tolist() == [[0.5, 0.5], [0.0, 0.0], [1.5, -0.5]]
+    assert plan.cost == pytest.approx(math.hypot(0.5, 0.5) + math.hypot(1.5, 0.5))
+
+
 def test_no_path_between_two_squares_that_touch_at_a_corner():
     squares = (box_polygon([0.5, 0.5], [1.0, 1.0]), box_polygon([1.5, 1.5], [1.0, 1.0]))
     plan = visibility_graph(World(polygons=squares), [0.0, 2.0], [2.0, 0.0])
