@@ -211,7 +211,8 @@ def potential_planner(world: World, start: ArrayLike, goal: ArrayLike,
     Returns
     -------
     PlanResult
-        ``path`` (k, 2) [m] the positions from the start to the goal (its last point) and
+        ``path`` (k, 2) [m] the positions from the start to the goal (its last point; the
+        last pose, within the law's ``goal_tolerance``, if the last bit is blocked) and
         ``cost`` its length [m]; or none with the reason: the start in collision, the goal in
         an obstacle (within r), a collision on the way, a local minimum (trapped at (x, y)),
         the budget exhausted. ``details``: ``poses`` (k, 3) [m, rad] and ``commands`` (k - 1, 2)
