@@ -23,6 +23,7 @@ setup(
         'console_scripts': [
             'path_tracker = robotica_ctrl.nodes.path_tracker:main',
             'planner = robotica_ctrl.nodes.planner:main',
+            'mapper = robotica_ctrl.nodes.mapper:main',
             'path_publisher = robotica_ctrl.nodes.path_publisher:main',
             'joint_controller = robotica_ctrl.nodes.joint_controller:main',
             'joint_trajectory_publisher = robotica_ctrl.nodes.joint_trajectory_publisher:main',

@@ -43,7 +43,7 @@ def test_an_unknown_executable_is_one_line_naming_those_of_the_package(capsys):
                               'x:=1')
     assert code == 2 and out == ''
     assert err == ("robotica node: error: no executable 'simulator' in robotica_ctrl; there "
-                   'are: joint_controller, joint_trajectory_publisher, path_publisher, '
+                   'are: joint_controller, joint_trajectory_publisher, mapper, path_publisher, '
                    'path_tracker, planner, reactive_navigator\n')
 
 
