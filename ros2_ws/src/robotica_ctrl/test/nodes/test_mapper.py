@@ -39,8 +39,8 @@ def _odom(t: float) -> Odometry:
 
 def test_a_wall_seen_by_the_laser_is_mapped(start_node, ros_node, spin, read_output):
     node, executor = ros_node
-    proc = start_node('robotica_ctrl', 'mapper', '-p', 'size:=[4.0, 2.0]', '-p', 'resolution:=0.1',
-               '-p', 'publish_period:=0.0')
+    proc = start_node('robotica_ctrl', 'mapper', '-p', 'size:=[4.0, 2.0]', '-p',
+                      'resolution:=0.1', '-p', 'publish_period:=0.0')
     maps = []
     node.create_subscription(OccupancyGrid, 'map', maps.append, LATCHED)
     odom = node.create_publisher(Odometry, 'odom', 10)
