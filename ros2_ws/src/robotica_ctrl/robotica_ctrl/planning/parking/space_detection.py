@@ -16,12 +16,14 @@ completion (ours), the algorithm and its thresholds (:class:`SpaceDetectionParam
 2. A reading of at most ``max_obstacle_range`` [m] is a parked obstacle beside the pass;
    farther, or no echo, is free (the space, with the curb or wall beyond it).
 3. A space is a run of free readings with obstacle readings on both sides: its rear end is
-   the echo point of the last obstacle reading before the run, its front end that of the
-   first one after it, both projected on the street's direction, so H = front − rear. A
-   beam's echo is placed on its axis: a sonar cone meets a corner before its axis does, so
-   the obstacles look longer and the space shorter than they are (the conservative error),
-   and with one ray per sample H is short by less than the sampling interval. Runs shorter
-   than ``min_gap_length`` are dropouts (a missed echo on a car's body) and are ignored.
+   where the beam's axis of the first free reading crosses the obstacles' line (step 4),
+   its front end that of the last one, along the street's direction: H = front − rear. A
+   beam that misses the obstacles passes beyond their ends, so H is never longer than the
+   space: with one ray per reading it is short by less than two sampling intervals, and a
+   sonar cone, which meets the cars' corners and end faces before its axis does, shortens
+   it further (the conservative error; by up to ``max_obstacle_range``·tan of the cone's
+   half angle at each end). Runs shorter than ``min_gap_length`` are dropouts (a missed
+   echo on a car's body) and are ignored.
 4. The line of the parked obstacles' sides is at the median distance of the echoes of the
    two bounding obstacle runs from P_f's line; J is the median distance of the echoes inside
    the run (the curb or wall) beyond that line, capped at ``max_depth``; with no echo inside
@@ -119,7 +121,7 @@ def detect_spaces(poses: ArrayLike, ranges: ArrayLike, sensor_pose: ArrayLike,
     >>> found = detect_spaces(poses, ranges, (0.0, -0.85, -math.pi / 2), 0.1, 5.0)
     >>> s = found[0].space
     >>> [round(v, 3) for v in (s.length, s.depth, *s.origin)], s.side
-    ([6.5, 2.2, 4.0, -1.85, 0.0], 'right')
+    ([6.3, 2.2, 4.1, -1.85, 0.0], 'right')
     """
     q, r, mount = _inputs(poses, ranges, sensor_pose, range_min, range_max)
     heading = math.atan2(float(np.sin(q[:, 2]).mean()), float(np.cos(q[:, 2]).mean()))
@@ -153,15 +155,20 @@ def detect_spaces(poses: ArrayLike, ranges: ArrayLike, sensor_pose: ArrayLike,
     order = np.flatnonzero(known)
     found: list[DetectedSpace] = []
     runs = np.split(order, np.flatnonzero(np.diff(obstacle[order].astype(np.int8))) + 1)
+    beam_along = np.cos(beam) * along_dir[0] + np.sin(beam) * along_dir[1]
+    beam_depth = np.cos(beam) * towards[0] + np.sin(beam) * towards[1]
+    sensor_depth = (sensor - base) @ towards
     for k in range(1, len(runs) - 1):
         run = runs[k]
         if obstacle[run[0]]:
             continue
-        rear_run, front_run = runs[k - 1], runs[k + 1]
-        rear, front = float(along[rear_run[-1]]), float(along[front_run[0]])
+        line = float(np.median(depth[np.concatenate([runs[k - 1], runs[k + 1]])]))
+        # Where the beams of the first and last free readings cross the obstacles' line.
+        ends = run[[0, -1]]
+        reach = (line - sensor_depth[ends]) / beam_depth[ends]
+        rear, front = (sensor_along[ends] + reach * beam_along[ends]).tolist()
         if front - rear < params.min_gap_length:
             continue
-        line = float(np.median(depth[np.concatenate([rear_run, front_run])]))
         inside = run[echo[run]]
         measured = len(inside) > 0
         width = (min(float(np.median(depth[inside])) - line, params.max_depth) if measured
