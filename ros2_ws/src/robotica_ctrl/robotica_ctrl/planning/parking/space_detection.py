@@ -149,7 +149,6 @@ def detect_spaces(poses: ArrayLike, ranges: ArrayLike, sensor_pose: ArrayLike,
     sensor_along = (sensor - base) @ along_dir
     if np.any(np.diff(sensor_along[known]) < -1e-9):
         raise ValueError('the pass must go forward: the sensor moved back along the street')
-    along = (points - base) @ along_dir
     depth = (points - base) @ towards
     obstacle = echo & (reading <= params.max_obstacle_range)
     order = np.flatnonzero(known)
