@@ -9,16 +9,25 @@ The ``planner`` node plans with :func:`plan_path` on a :class:`~robotica_kin.wor
 keep the path free (the grid's path may graze an obstacle of the world's exact geometry) leaves
 it as it was, and ``details['smoothing']`` says why.
 
-========== ================================================== ======================
-method     planner                                            book
-========== ================================================== ======================
-``astar``  :func:`~.grid_astar.grid_astar` on the world's grid §12.6.2, (12.1)
-========== ================================================== ======================
+==================== ========================================================= ==============
+method               planner                                                   book
+==================== ========================================================= ==============
+``astar``            :func:`~.grid_astar.grid_astar` on the world's grid       §12.6.2, (12.1)
+``visibility_graph`` :func:`~.visibility_graph.visibility_graph` (+ Dijkstra)  §12.6.2
+``voronoi``          :func:`~.voronoi_roadmap.voronoi_roadmap`                 §12.6.2
+``potential``        :func:`~.potential_planner.potential_planner`, Krogh      (12.3)-(12.8)
+``vff``              :func:`~.potential_planner.potential_planner`, VFF        (12.9)-(12.15)
+==================== ========================================================= ==============
+
+The geometric planners (visibility graph, Voronoi) need a world of walls, polygons and circles;
+a map grid is planned on with A* (or the potential fields). A potential planner that stalls in
+a local minimum says so in its reason: the trap is reported, never hidden.
 """
 from typing import Any, Mapping, Optional
 
 import numpy as np
 from numpy.typing import ArrayLike
+from robotica_ctrl.mobile.reactive import GeneralisedPotentialParams, VirtualForceFieldParams
 from robotica_kin.parameter_specs import parameter_values, ParameterSpec
 from robotica_kin.world.rasterise import world_grid
 from robotica_kin.world.shapes import World
@@ -27,11 +36,14 @@ from .grid_astar import grid_astar
 from .path_shortcut import shortcut_path
 from .path_smoothing import smooth_path
 from .plan_result import PlanResult, SearchBudget
+from .potential_planner import potential_planner, PotentialPlannerParams
 from .search_setup import Clock
+from .visibility_graph import visibility_graph
+from .voronoi_roadmap import voronoi_roadmap
 
 __all__ = ['PLANNER_METHODS', 'PLANNER_PARAMETERS', 'plan_path']
 
-PLANNER_METHODS = ('astar',)
+PLANNER_METHODS = ('astar', 'visibility_graph', 'voronoi', 'potential', 'vff')
 PLANNER_PARAMETERS: dict[str, ParameterSpec] = {
     'method': ParameterSpec('astar', 'The planner (book ch. 12)', choices=PLANNER_METHODS),
     'robot_radius': ParameterSpec(0.3, 'Radius of the robot [m]: obstacles are grown by it '
@@ -78,11 +90,28 @@ def plan_path(world: World, start: ArrayLike, goal: ArrayLike,
     """
     o = parameter_values(PLANNER_PARAMETERS, dict(options or {}))
     budget = SearchBudget(int(o['max_expansions']), float(o['max_seconds']))
-    grid = world.grid if world.grid is not None and not len(world.segments) \
-        and not len(world.circles) else world_grid(world, o['resolution'])
-    result = grid_astar(grid, start, goal, int(o['neighbours']), o['robot_radius'],
-                        unknown_is_obstacle=o['unknown_is_obstacle'], budget=budget,
-                        clock=clock)
+    method, radius = o['method'], o['robot_radius']
+    geometric = world.grid is None
+    if method in ('visibility_graph', 'voronoi') and not geometric:
+        return PlanResult.none(f'{method} plans among walls, polygons and circles: this world '
+                               'is a grid (use astar)')
+    if method == 'visibility_graph':
+        result = visibility_graph(world, start, goal, radius, budget=budget, clock=clock)
+    elif method == 'voronoi':
+        result = voronoi_roadmap(world, start, goal, radius, budget=budget, clock=clock)
+    elif method in ('potential', 'vff'):
+        law = GeneralisedPotentialParams() if method == 'potential' else \
+            VirtualForceFieldParams()
+        return potential_planner(world, start, goal, law,
+                                 PotentialPlannerParams(robot_radius=max(radius, 1e-3)),
+                                 budget, clock)
+    else:
+        grid = world.grid if world.grid is not None and geometric is False \
+            and not len(world.segments) and not len(world.circles) \
+            else world_grid(world, o['resolution'])
+        result = grid_astar(grid, start, goal, int(o['neighbours']), radius,
+                            unknown_is_obstacle=o['unknown_is_obstacle'], budget=budget,
+                            clock=clock)
     if not result.found or not o['smooth'] or result.path is None or len(result.path) < 3:
         return result
     footprint = max(o['robot_radius'], 1e-3)
