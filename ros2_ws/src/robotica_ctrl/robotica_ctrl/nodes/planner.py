@@ -131,9 +131,10 @@ class PlannerNode(GuardedNode):
         began = time.monotonic()
         result = plan_path(self._world, self._start, self._goal, self._options, time.monotonic)
         elapsed = time.monotonic() - began
-        self._path = result.path
+        self._path = None if result.path is None else result.path[:, :2]
         stamp = self.get_clock().now().to_msg()
-        path = path_message(result.path if result.found else np.zeros((0, 2)), self._frame)
+        path = path_message(result.path[:, :2] if result.path is not None else np.zeros((0, 2)),
+                            self._frame)   # (x, y); a curved path's θ is its tangent anyway
         path.header.stamp = stamp
         self._plan_pub.publish(path)
         self._status_pub.publish(self._status(result, elapsed, stamp))

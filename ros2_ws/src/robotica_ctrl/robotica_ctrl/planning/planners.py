@@ -7,7 +7,9 @@ The ``planner`` node plans with :func:`plan_path` on a :class:`~robotica_kin.wor
 ``smooth``, the path shortened by line of sight and smoothed for a disc of ``robot_radius``
 (:mod:`.path_shortcut`, :mod:`.path_smoothing`), never into an obstacle: a step that cannot
 keep the path free (the grid's path may graze an obstacle of the world's exact geometry) leaves
-it as it was, and ``details['smoothing']`` says why.
+it as it was, and ``details['smoothing']`` says why. With ``max_curvature`` (a steered
+vehicle) the shortcut path's corners become clothoid turns within κ_max
+(:mod:`.continuous_curvature`: poses (x, y, θ), swept free), or there is no path and the reason.
 
 ==================== ========================================================= ==============
 method               planner                                                   book
@@ -32,6 +34,7 @@ from robotica_kin.parameter_specs import parameter_values, ParameterSpec
 from robotica_kin.world.rasterise import world_grid
 from robotica_kin.world.shapes import World
 
+from .continuous_curvature import continuous_curvature_path
 from .grid_astar import grid_astar
 from .path_shortcut import shortcut_path
 from .path_smoothing import smooth_path
@@ -54,6 +57,11 @@ PLANNER_PARAMETERS: dict[str, ParameterSpec] = {
     'unknown_is_obstacle': ParameterSpec(True, 'Plan around unknown cells (-1) of a map'),
     'smooth': ParameterSpec(True, 'Shorten the path by line of sight and smooth it, keeping '
                             'robot_radius of clearance'),
+    'max_curvature': ParameterSpec(0.0, 'kappa_max [1/m] of a steered vehicle, tan(phi_max)/L: '
+                                   'the path gets clothoid turns within it (§10.4); 0: none',
+                                   0.0, 1e3),
+    'max_sharpness': ParameterSpec(1.0, 'sigma_max [1/m^2], the largest change of curvature '
+                                   'per metre of the clothoid turns', 1e-6, 1e6),
     'max_expansions': ParameterSpec(2_000_000, 'Bound on the nodes a search expands', 1,
                                     1_000_000_000),
     'max_seconds': ParameterSpec(5.0, 'Bound on the time of a search [s]', 1e-3, 3600.0),
@@ -116,11 +124,20 @@ def plan_path(world: World, start: ArrayLike, goal: ArrayLike,
         return result
     footprint = max(o['robot_radius'], 1e-3)
     path, steps = result.path, []
-    for improve in (shortcut_path, smooth_path):
+    curved = o['max_curvature'] > 0.0   # clothoid turns round the shortcut's corners instead
+    for improve in (shortcut_path,) if curved else (shortcut_path, smooth_path):
         better = improve(world, path, footprint, budget=budget, clock=clock)
         steps.append(better.reason or 'done')
         if better.found and better.path is not None:   # else keep the path as it is
             path = better.path
+    details = {**result.details, 'raw_path': result.path, 'smoothing': steps}
+    if curved:   # a steered vehicle: clothoid turns, swept free, or no path
+        curved = continuous_curvature_path(path, o['max_curvature'], o['max_sharpness'],
+                                           world=world, footprint=footprint)
+        if not curved.found:
+            return PlanResult.none(f'no path within the curvature bound: {curved.reason}',
+                                   result.expansions, **details)
+        return PlanResult(curved.path, curved.cost, '', result.expansions, None,
+                          {**details, **curved.details})
     length = float(np.sum(np.hypot(*np.diff(path, axis=0).T)))
-    return PlanResult(path, length, '', result.expansions, None,
-                      {**result.details, 'raw_path': result.path, 'smoothing': steps})
+    return PlanResult(path, length, '', result.expansions, None, details)

@@ -161,3 +161,23 @@ def test_distance_helper_is_right():
     # The independent check above: a point above the wall's end, one beside it.
     assert _wall_distance(np.array([[2.0, 4.0], [1.0, 1.0]])).tolist() == [1.0, 1.0]
     assert math.isclose(_wall_distance(np.array([[3.0, 4.0]]))[0], math.sqrt(2.0))
+
+
+def test_a_curvature_bound_gives_clothoid_turns(start_node, ros_node, spin, world):
+    node, executor = ros_node
+    start_node('robotica_ctrl', 'planner', '-p', f'world_file:={world}', '-p',
+               'start:=[1.0, 1.0]', '-p', 'goal:=[3.0, 1.0]', '-p', 'robot_radius:=0.2',
+               '-p', 'max_curvature:=5.0', '-p', 'max_sharpness:=100.0')   # the room is tight
+    plans, statuses = _listen(node)
+    assert spin(executor, lambda: plans and statuses)
+    assert statuses[-1].found, statuses[-1].reason
+    points = _points(plans[-1])
+    assert _wall_distance(points).min() >= 0.2 - 1e-9
+    # The curvature of the published poses, from three consecutive points (the circle through
+    # them), never exceeds the bound (samples 5 cm apart: a little slack for the chord).
+    a, b, c = points[:-2], points[1:-1], points[2:]
+    ab, bc, ca = (np.hypot(*(q - p).T) for p, q in ((a, b), (b, c), (c, a)))
+    cross = np.abs((b - a)[:, 0] * (c - a)[:, 1] - (b - a)[:, 1] * (c - a)[:, 0])
+    keep = (ab > 1e-6) & (bc > 1e-6) & (ca > 1e-6)
+    curvature = 2.0 * cross[keep] / (ab * bc * ca)[keep]
+    assert curvature.max() <= 5.0 * 1.05
