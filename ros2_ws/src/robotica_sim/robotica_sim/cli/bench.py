@@ -20,7 +20,10 @@ next to a plain NumPy loop and a Python cell traversal; see
 :mod:`robotica_sim.benchmarks.raycast`. ``robotica bench laws`` times the ``update`` of every law
 of the joint controller on the PUMA 560 against the 1 ms servo period and runs each in closed
 loop (joint laws on θ_i = sin t, Cartesian laws on a 10 cm line, force laws against the plane of
-Ej. 8.10); see :mod:`robotica_sim.benchmarks.control_laws`.
+Ej. 8.10); see :mod:`robotica_sim.benchmarks.control_laws`. ``robotica bench planning`` times
+grid A* on random 200 x 200 and 1000 x 1000 grids against a textbook Python A*, SciPy's and
+NetworkX's shortest paths on the same graph, all costs checked equal; see
+:mod:`robotica_sim.benchmarks.planning`.
 """
 import argparse
 import dataclasses
@@ -38,6 +41,9 @@ from robotica_sim.benchmarks.control_laws import (control_law_benchmark, format_
 from robotica_sim.benchmarks.kinematics import BenchmarkRow, run_kinematics_benchmark
 from robotica_sim.benchmarks.measurement_row import MeasurementRow
 from robotica_sim.benchmarks.mobile import mobile_core_benchmark
+from robotica_sim.benchmarks.planning import (format_planning_table, networkx_module,
+                                              planning_benchmark, planning_rows_json, REPEATS,
+                                              SIZES)
 from robotica_sim.benchmarks.raycast import raycast_benchmark
 from robotica_sim.benchmarks.recorder import RATES, recorder_benchmark
 from robotica_sim.benchmarks.tracking import (format_tracking_table, PATHS, plot_tracking,
@@ -47,8 +53,9 @@ from robotica_sim.benchmarks.your_node import your_node_benchmark
 from robotica_sim.cli.options import integer, path, real
 
 HELP = ('measure the speed of the kinematics, the arm loop, the mobile loop, the tracking '
-        "laws, the recorder, the viewer, a user's node, ray casting or the arm's control laws "
-        '(robotica bench kin|arm|mobile|tracking|recorder|view|your_node|raycast|laws)')
+        "laws, the recorder, the viewer, a user's node, ray casting, the arm's control laws or "
+        'grid planning '
+        '(robotica bench kin|arm|mobile|tracking|recorder|view|your_node|raycast|laws|planning)')
 EPILOG = """examples:
   robotica bench kin                       1000 configurations per robot, Markdown table
   robotica bench kin --count 200 --json    quicker, machine-readable
@@ -71,9 +78,12 @@ EPILOG = """examples:
   robotica bench laws                      every joint-controller law: µs per update against
                                            the 1 ms servo period, closed-loop error (10 s)
   robotica bench laws --duration 0.5 --count 100
+  robotica bench planning                  grid A* on 200x200 and 1000x1000 against a Python
+                                           A*, SciPy and NetworkX (about 2 min)
+  robotica bench planning --skip-networkx --repeats 2 --sizes 200
 """
 SUITES = ('kin', 'arm', 'mobile', 'tracking', 'recorder', 'view', 'your_node', 'raycast',
-          'laws')
+          'laws', 'planning')
 # Upper bounds of the sizes: beyond them a benchmark runs for hours (1e7 DDS round trips, a
 # day-long ROS loop) or fills the memory (1e7 batched Jacobians are 2.9 GB), and a typo should
 # not be taken for such a request.
@@ -82,6 +92,8 @@ MAX_BASELINE_IK = 10_000
 MAX_LOOP_DURATION = 600.0   # [s]
 MAX_VIEW_RUNS = 50          # demo runs each way of bench view
 MAX_LAW_RUN = 600.0         # [s] simulated, cap of bench laws' closed-loop runs
+MAX_PLAN_REPEATS = 100      # timed searches per method of bench planning
+MAX_PLAN_SIZE = 2000        # cells a side of bench planning's grids (4 million cells)
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -94,7 +106,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         "view = the cost of TF and markers and the relay's throughput, "
                         "your_node = the cost of a user's Python tracker in the demo, "
                         'raycast = ray casting on the world model, '
-                        "laws = the joint controller's control laws on the PUMA 560")
+                        "laws = the joint controller's control laws on the PUMA 560, "
+                        'planning = grid A* against a Python A*, SciPy and NetworkX')
     parser.add_argument('--count', type=integer(1, MAX_COUNT), default=1000,
                         help='kin: random configurations per robot; arm: simulated steps of '
                         'the core and DDS round trips; raycast: scans per world; laws: update '
@@ -113,7 +126,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         f'{MAX_BASELINE_IK})')
     parser.add_argument('--seed', type=integer(0, 2**32 - 1), default=0,
                         help='kin: seed of the configurations; tracking: seed of the sensor '
-                        'noise; raycast: seed of the worlds and origins (default 0)')
+                        'noise; raycast: seed of the worlds and origins; planning: seed of the '
+                        'grids (default 0)')
     parser.add_argument('--laws', nargs='+', choices=LAWS, default=list(LAWS),
                         metavar='LAW', help=f'tracking: laws to run, of {", ".join(LAWS)}')
     parser.add_argument('--vehicles', nargs='+', choices=VEHICLES, default=list(VEHICLES),
@@ -136,6 +150,16 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument('--duration', type=real(0.0, MAX_LAW_RUN, low_open=True), default=None,
                         help='laws: cap of every closed-loop run [s, simulated] (default none: '
                         '5 s per joint and force law, 3 learning trials of 2π s, a 2 s line)')
+    parser.add_argument('--repeats', type=integer(1, MAX_PLAN_REPEATS), default=REPEATS,
+                        help='planning: timed searches per method, the minimum reported '
+                        f'(default {REPEATS}, at most {MAX_PLAN_REPEATS})')
+    parser.add_argument('--sizes', type=integer(2, MAX_PLAN_SIZE), nargs='+',
+                        default=list(SIZES), metavar='N',
+                        help='planning: grids of N x N cells '
+                        f'(default {" ".join(map(str, SIZES))}, at most {MAX_PLAN_SIZE})')
+    parser.add_argument('--skip-networkx', action='store_true',
+                        help='planning: without NetworkX (its 1000 x 1000 graph takes seconds '
+                        'and about a gigabyte)')
     parser.add_argument('--json', action='store_true', help='print JSON instead of a table')
     parser.add_argument('--quiet', action='store_true', help='no progress on stderr')
 
@@ -178,6 +202,8 @@ def main(args: argparse.Namespace) -> int:
         return _print_rows(args, raycast_benchmark(args.count, args.seed, progress))
     if args.suite == 'laws':
         return _laws(args, progress)
+    if args.suite == 'planning':
+        return _planning(args, progress)
     rows = run_kinematics_benchmark(args.count, args.baseline_ik_count, args.seed, progress)
     if args.json:
         print(json.dumps([dataclasses.asdict(row) for row in rows], indent=2))
@@ -267,6 +293,24 @@ def _laws(args: argparse.Namespace, progress) -> int:
         print(json.dumps(law_rows_json(rows), indent=2))
     else:
         print(format_law_table(rows))
+    return 0
+
+
+def _planning(args: argparse.Namespace, progress) -> int:
+    if not args.skip_networkx and networkx_module() is None:
+        print('robotica bench: planning: networkx is not installed: pip install networkx, or '
+              'run with --skip-networkx', file=sys.stderr)
+        return 2
+    try:
+        rows = planning_benchmark(args.sizes, args.repeats, args.seed, not args.skip_networkx,
+                                  progress)
+    except RuntimeError as err:   # a CostMismatch among them: the comparison failed
+        print(f'robotica bench: planning: FAILED: {err}', file=sys.stderr)
+        return 1
+    if args.json:
+        print(json.dumps(planning_rows_json(rows), indent=2))
+    else:
+        print(format_planning_table(rows))
     return 0
 
 
