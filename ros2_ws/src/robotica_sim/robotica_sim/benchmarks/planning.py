@@ -40,22 +40,20 @@ build what they need inside the timed call. Every cost (in cells) must agree wit
 and nothing is reported. The issue's goals (:data:`GOALS`: 200 x 200 under 50 ms, 1000 x 1000
 under 1 s) are judged on the minimum time of our rows.
 
-NetworkX is optional here (the comparison, not the robot, needs it: it is pinned in
-``requirements/robotica.txt``, not a run-time dependency of the package), hence
-:func:`networkx_module` instead of an import; ``networkx=False`` skips it (on 1000 x 1000 its
-graph takes seconds to build and about a gigabyte of memory).
+NetworkX is a dependency of the package for this comparison (pinned in
+``requirements/robotica.txt``); ``networkx=False`` skips it (on 1000 x 1000 its graph takes
+seconds to build and about a gigabyte of memory).
 """
 import dataclasses
 from dataclasses import dataclass
 import gc
 from heapq import heappop, heappush
-import importlib
 import math
 import statistics
 import time
-from types import ModuleType
 from typing import Any, Callable, Optional, Sequence
 
+import networkx as nx
 import numpy as np
 from numpy.typing import NDArray
 from robotica_ctrl.planning.grid_astar import astar_cells, grid_astar
@@ -66,7 +64,7 @@ from scipy.sparse.csgraph import dijkstra, shortest_path
 
 __all__ = ['COST_TOLERANCE', 'CostMismatch', 'GOALS', 'OBSTACLE_FRACTION', 'PlanningRow',
            'REPEATS', 'RESOLUTION', 'SIZES', 'baseline_astar', 'check_costs',
-           'format_planning_table', 'grid_edges', 'networkx_module', 'planning_benchmark',
+           'format_planning_table', 'grid_edges', 'planning_benchmark',
            'planning_rows_json', 'random_grid']
 
 SIZES = (200, 1000)           # cells a side
@@ -244,14 +242,6 @@ def baseline_astar(blocked: NDArray[np.bool_], start: tuple[int, int], goal: tup
     return math.inf, len(closed), []
 
 
-def networkx_module() -> Optional[ModuleType]:
-    """Return the ``networkx`` module, or None when it is not installed (it is optional here)."""
-    try:
-        return importlib.import_module('networkx')
-    except ImportError:
-        return None
-
-
 def _time(calls: Sequence[Callable[[], Any]], repeats: int
           ) -> list[tuple[list[float], Any]]:
     """
@@ -374,8 +364,7 @@ def _scipy(case: _Case, blocked: NDArray[np.bool_], neighbours: int, progress: P
                  reached, 'as dijkstra, after its input checks', build_time)
 
 
-def _networkx(case: _Case, blocked: NDArray[np.bool_], nx: ModuleType,
-              progress: Progress) -> None:
+def _networkx(case: _Case, blocked: NDArray[np.bool_], progress: Progress) -> None:
     n = case.size
     s, t = 0, n * n - 1
     progress(f'planning: {n} x {n}: NetworkX graph (slow on large grids)')
@@ -421,9 +410,6 @@ def planning_benchmark(sizes: Sequence[int] = SIZES, repeats: int = REPEATS, see
         When NetworkX is asked for but not installed.
 
     """
-    nx = networkx_module() if networkx else None
-    if networkx and nx is None:
-        raise RuntimeError('networkx is not installed (pip install networkx), or skip it')
     rows: list[PlanningRow] = []
     for size in sizes:
         blocked = random_grid(size, seed)
@@ -431,8 +417,8 @@ def planning_benchmark(sizes: Sequence[int] = SIZES, repeats: int = REPEATS, see
         case = _Case(size, blocked, repeats)
         _ours(case, blocked, grid, 8, progress)
         _scipy(case, blocked, 8, progress)
-        if nx is not None:
-            _networkx(case, blocked, nx, progress)
+        if networkx:
+            _networkx(case, blocked, progress)
         _ours(case, blocked, grid, 16, progress)
         _scipy(case, blocked, 16, progress, both=False)
         check_costs(case.rows)

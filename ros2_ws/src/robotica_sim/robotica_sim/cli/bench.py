@@ -41,9 +41,8 @@ from robotica_sim.benchmarks.control_laws import (control_law_benchmark, format_
 from robotica_sim.benchmarks.kinematics import BenchmarkRow, run_kinematics_benchmark
 from robotica_sim.benchmarks.measurement_row import MeasurementRow
 from robotica_sim.benchmarks.mobile import mobile_core_benchmark
-from robotica_sim.benchmarks.planning import (format_planning_table, networkx_module,
-                                              planning_benchmark, planning_rows_json, REPEATS,
-                                              SIZES)
+from robotica_sim.benchmarks.planning import (format_planning_table, planning_benchmark,
+                                              planning_rows_json, REPEATS, SIZES)
 from robotica_sim.benchmarks.raycast import raycast_benchmark
 from robotica_sim.benchmarks.recorder import RATES, recorder_benchmark
 from robotica_sim.benchmarks.tracking import (format_tracking_table, PATHS, plot_tracking,
@@ -297,10 +296,6 @@ def _laws(args: argparse.Namespace, progress) -> int:
 
 
 def _planning(args: argparse.Namespace, progress) -> int:
-    if not args.skip_networkx and networkx_module() is None:
-        print('robotica bench: planning: networkx is not installed: pip install networkx, or '
-              'run with --skip-networkx', file=sys.stderr)
-        return 2
     try:
         rows = planning_benchmark(args.sizes, args.repeats, args.seed, not args.skip_networkx,
                                   progress)

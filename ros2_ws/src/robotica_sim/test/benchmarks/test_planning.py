@@ -13,7 +13,7 @@ import pytest
 from robotica_ctrl.planning.grid_astar import astar_cells
 from robotica_sim.benchmarks.planning import (baseline_astar, check_costs, CostMismatch,
                                               format_planning_table, GOALS, grid_edges,
-                                              networkx_module, planning_benchmark,
+                                              planning_benchmark,
                                               planning_rows_json, PlanningRow, random_grid)
 from robotica_sim.cli.main import main
 from scipy.sparse import csr_matrix
@@ -76,8 +76,8 @@ def test_diagonal_needs_both_side_cells_free():
 
 def test_rows_have_every_method_and_one_cost_per_case():
     rows = planning_benchmark(sizes=(6, 14), repeats=2, seed=3,
-                              networkx=networkx_module() is not None)
-    methods_8 = METHODS_8 + (METHODS_NX if networkx_module() is not None else [])
+                              networkx=True)
+    methods_8 = METHODS_8 + METHODS_NX
     for size in (6, 14):
         for neighbours, methods in ((8, methods_8), (16, METHODS_16)):
             case = [r for r in rows if r.size == size and r.neighbours == neighbours]
