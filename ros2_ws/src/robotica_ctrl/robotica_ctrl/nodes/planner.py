@@ -25,16 +25,15 @@ from nav_msgs.msg import OccupancyGrid as OccupancyGridMsg, Odometry, Path
 import numpy as np
 from rclpy.experimental import EventsExecutor
 from robotica_ctrl.planning.plan_result import PlanResult
-from robotica_ctrl.planning.planners import plan_path, PLANNER_PARAMETERS
+from robotica_ctrl.planning.planners import plan_path, planner_options, PLANNER_PARAMETERS
 from robotica_kin.bounds import bounded_array, MAX_POSITION
-from robotica_kin.parameter_specs import parameter_values
 from robotica_kin.ros.convert import (path_message, pose2d_from_odometry, quaternion_to_yaw,
                                       yaw_to_quaternion)
 from robotica_kin.ros.entry_point import run_node
 from robotica_kin.ros.grid_messages import grid_from_message
 from robotica_kin.ros.guarded import GuardedNode
 from robotica_kin.ros.parameters import declare, declare_specs
-from robotica_kin.ros.qos import LATCHED_QOS, STREAM_SUB_QOS
+from robotica_kin.ros.qos import COMMAND_QOS, LATCHED_QOS, STREAM_SUB_QOS
 from robotica_kin.world.queries import swept_collision
 from robotica_kin.world.shapes import World
 from robotica_kin.world.world_file import load_world_file
@@ -58,7 +57,7 @@ class PlannerNode(GuardedNode):
 
     def __init__(self) -> None:
         super().__init__('planner')
-        self._options = parameter_values(PLANNER_PARAMETERS, declare_specs(
+        self._options = planner_options(declare_specs(
             self, PLANNER_PARAMETERS))   # the choices and ranges rclpy does not check
         self._frame = declare(self, 'frame_id', 'map', 'Frame of the map, the path and goals',
                               read_only=True)
@@ -79,7 +78,9 @@ class PlannerNode(GuardedNode):
         if self._world is None:
             self.create_subscription(OccupancyGridMsg, '/map', self._on_map, LATCHED_QOS)
         self.create_subscription(Odometry, 'odom', self._on_odom, STREAM_SUB_QOS)
-        self.create_subscription(PoseStamped, 'goal_pose', self._on_goal, LATCHED_QOS)
+        # Reliable and volatile: RViz's and Foxglove's goal tools (volatile) and a latched
+        # publisher are both matched (a transient-local reader refuses a volatile writer).
+        self.create_subscription(PoseStamped, 'goal_pose', self._on_goal, COMMAND_QOS)
         self.get_logger().info(
             f"planner {self._options['method']!r} on "
             + (f'the world of {path}' if path else '/map') + ', goal '
@@ -169,7 +170,7 @@ class PlannerNode(GuardedNode):
             line.points = [Point(x=float(x), y=float(y)) for x, y in result.path[:, :2]]
         markers.append(line)
         expanded = result.details.get('expanded')
-        grid = None if self._world is None else self._world.grid
+        grid = result.details.get('grid')   # the grid A* searched (drawn from a world's shapes)
         if expanded is not None and grid is not None and len(expanded):
             cells = np.asarray(expanded)[::max(1, len(expanded) // MAX_EXPANDED_MARKERS)]
             centres = grid.cell_to_world(cells)

@@ -30,7 +30,7 @@ from typing import Any, Mapping, Optional
 import numpy as np
 from numpy.typing import ArrayLike
 from robotica_ctrl.mobile.reactive import GeneralisedPotentialParams, VirtualForceFieldParams
-from robotica_kin.parameter_specs import parameter_values, ParameterSpec
+from robotica_kin.parameter_specs import parameter_values, ParameterError, ParameterSpec
 from robotica_kin.world.rasterise import world_grid
 from robotica_kin.world.shapes import World
 
@@ -44,7 +44,7 @@ from .search_setup import Clock
 from .visibility_graph import visibility_graph
 from .voronoi_roadmap import voronoi_roadmap
 
-__all__ = ['PLANNER_METHODS', 'PLANNER_PARAMETERS', 'plan_path']
+__all__ = ['PLANNER_METHODS', 'PLANNER_PARAMETERS', 'plan_path', 'planner_options']
 
 PLANNER_METHODS = ('astar', 'visibility_graph', 'voronoi', 'potential', 'vff')
 PLANNER_PARAMETERS: dict[str, ParameterSpec] = {
@@ -67,6 +67,22 @@ PLANNER_PARAMETERS: dict[str, ParameterSpec] = {
     'max_seconds': ParameterSpec(5.0, 'Bound on the time of a search [s]', 1e-3, 3600.0),
 }
 """The planner node's planning parameters (the options of :func:`plan_path`)."""
+
+
+def planner_options(options: Mapping[str, Any]) -> dict[str, Any]:
+    """
+    Return ``options`` (names of :data:`PLANNER_PARAMETERS`) checked, missing ones defaulted.
+
+    Raises ParameterError (by name) for a value out of its range or choices, or a number of
+    neighbours other than 8 or 16.
+
+    >>> planner_options({'neighbours': 16})['method']
+    'astar'
+    """
+    values = parameter_values(PLANNER_PARAMETERS, dict(options))
+    if values['neighbours'] not in (8, 16):
+        raise ParameterError('neighbours', f"must be 8 or 16, got {values['neighbours']}")
+    return values
 
 
 def plan_path(world: World, start: ArrayLike, goal: ArrayLike,
@@ -96,7 +112,7 @@ def plan_path(world: World, start: ArrayLike, goal: ArrayLike,
     (True, True)
 
     """
-    o = parameter_values(PLANNER_PARAMETERS, dict(options or {}))
+    o = planner_options(options or {})
     budget = SearchBudget(int(o['max_expansions']), float(o['max_seconds']))
     method, radius = o['method'], o['robot_radius']
     geometric = world.grid is None
@@ -120,6 +136,7 @@ def plan_path(world: World, start: ArrayLike, goal: ArrayLike,
         result = grid_astar(grid, start, goal, int(o['neighbours']), radius,
                             unknown_is_obstacle=o['unknown_is_obstacle'], budget=budget,
                             clock=clock)
+        result.details['grid'] = grid   # the grid of the expanded cells (the node draws them)
     if not result.found or not o['smooth'] or result.path is None or len(result.path) < 3:
         return result
     footprint = max(o['robot_radius'], 1e-3)

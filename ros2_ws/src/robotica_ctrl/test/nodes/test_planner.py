@@ -64,7 +64,8 @@ def test_plans_round_the_wall_and_replans_for_a_new_goal(start_node, ros_node, s
     goal.header.frame_id = 'map'
     goal.pose.position.x, goal.pose.position.y = 1.0, 3.5
     goal.pose.orientation.w = 1.0
-    pub = node.create_publisher(PoseStamped, 'goal_pose', LATCHED)
+    pub = node.create_publisher(PoseStamped, 'goal_pose', 10)   # volatile, as RViz's tool
+    assert spin(executor, lambda: pub.get_subscription_count() > 0)
     pub.publish(goal)
     assert spin(executor, lambda: len(plans) >= 2 and len(statuses) >= 2)
     assert _points(plans[-1])[-1] == pytest.approx([1.0, 3.5], abs=0.05)
@@ -149,6 +150,7 @@ def test_hostile_goals_and_poses_do_not_kill_it(start_node, ros_node, fuzz_survi
     (('-p', 'method:=rrt'), 'method'),
     (('-p', 'goal:=[1.0, 2.0, 3.0, 4.0]'), 'goal'),
     (('-p', 'start:=[1e300, 0.0]'), 'start'),
+    (('-p', 'neighbours:=12'), 'neighbours must be 8 or 16'),
 ])
 def test_bad_parameters_are_refused(start_node, read_output, arguments, reason):
     proc = start_node('robotica_ctrl', 'planner', *arguments)

@@ -29,13 +29,12 @@ from robotica_ctrl.mobile import path_shapes
 from robotica_ctrl.mobile.reactive_navigation import NAVIGATOR_PARAMETERS, navigator_params
 from robotica_ctrl.mobile.tracking_laws import (check_gains, law_for_path, LAW_PARAMETERS,
                                                 TRACKER_PARAMETERS)
-from robotica_ctrl.planning.planners import PLANNER_PARAMETERS
+from robotica_ctrl.planning.planners import planner_options, PLANNER_PARAMETERS
 from robotica_ctrl.trajectory.joint_reference import reference_samples
 from robotica_kin.dh import as_dyn_model, DHModel
 from robotica_kin.mobile.odometry_fusion import ODOMETRY_PARAMETERS
 from robotica_kin.mobile.vehicles import GEOMETRY_PARAMETERS, STEERED_TYPES, vehicle_kinematics
-from robotica_kin.parameter_specs import (check_parameters, parameter_values, ParameterError,
-                                          ParameterSpec)
+from robotica_kin.parameter_specs import check_parameters, ParameterError, ParameterSpec
 from robotica_kin.robots import pp_robot, puma560, robot_by_name, two_link_arm
 from robotica_kin.world.world_section import world_from_mapping
 from robotica_sim.runs.roles import Role, role_contract, ROLE_SECTIONS, topic_name
@@ -924,7 +923,7 @@ def _planner(scenario: Scenario) -> NodeSpec:
     options = {'method': spec.method, **_dotted('', spec.options, where, 'planner.',
                                                 PLANNER_PARAMETERS)}
     _node_check(where, 'planner', {name: f'planner.{name}' for name in options},
-                lambda: parameter_values(PLANNER_PARAMETERS, options))
+                lambda: planner_options(options))
     x0, y0, _ = scenario.robot.initial_pose
     return NodeSpec('robotica_ctrl', 'planner', 'planner', {
         **options, 'world_file': str(scenario.source), 'start': [float(x0), float(y0)],

@@ -95,6 +95,8 @@ CASES = [
      "planner.method must be one of ('astar',"),
     ('unknown planner option', 'room_astar', {'planner.horizon': 3},
      'unknown key planner.horizon; known: '),
+    ('twelve neighbours', 'room_astar', {'planner.neighbours': 12},
+     'planner.neighbours must be 8 or 16, got 12'),
     ('negative robot radius', 'room_astar', {'planner.robot_radius': -1},
      'planner.robot_radius must be in [0, 100]'),
     ('planner and a path', 'room_astar', {'path': {'shape': 'straight_line'}},
