@@ -124,8 +124,10 @@ def plan_path(world: World, start: ArrayLike, goal: ArrayLike,
     elif method == 'voronoi':
         result = voronoi_roadmap(world, start, goal, radius, budget=budget, clock=clock)
     elif method in ('potential', 'vff'):
+        # VFF sums the repulsion of every certainty cell (0.1 m) in its window: the reactive
+        # law's gain, tuned for a laser's returns, stalls it; the planner's is the tests'.
         law = GeneralisedPotentialParams() if method == 'potential' else \
-            VirtualForceFieldParams()
+            VirtualForceFieldParams(repulsive_gain=0.02, window_radius=1.0)
         return potential_planner(world, start, goal, law,
                                  PotentialPlannerParams(robot_radius=max(radius, 1e-3)),
                                  budget, clock)
