@@ -110,3 +110,16 @@ def test_a_planned_path_is_followed_to_the_goal(tmp_path, ros_domain):
     assert length >= math.dist((0.5, 0.5), (7.0, 5.0))   # no shorter than the straight line
     end = got['/ground_truth/odom'][-1].pose.pose.position
     assert math.dist((end.x, end.y), (7.0, 5.0)) < 0.3
+
+
+def test_the_voronoi_path_runs_down_the_corridors_middle(tmp_path, ros_domain):
+    # corridor_voronoi (issue 21): the roadmap keeps as far from both walls as it can, so along
+    # the first leg (walls at y = -0.6 and 0.6) its points lie on the centre line y = 0.
+    bag = run(tmp_path, 'corridor_voronoi')
+    code, report = grade(bag, '--rubric', 'corridor_voronoi')
+    assert code == 0, report
+    got = messages(bag, '/planner/status', '/path')
+    assert got['/planner/status'][-1].found and got['/planner/status'][-1].method == 'voronoi'
+    leg = [(p.pose.position.x, p.pose.position.y) for p in got['/path'][-1].poses
+           if 0.5 < p.pose.position.x < 4.5]
+    assert leg and max(abs(y) for _, y in leg) < 0.05
