@@ -271,7 +271,7 @@ class JointControllerNode(GuardedNode):
         reason = self._restart_reason(t)
         if reason:
             self.get_logger().warn(f'{reason}: controller reset')
-            self._law.reset()
+            (self._task or self._law).reset()   # a task law's reference restarts too
             self._previous_time = None
         dt = self._first_period if self._previous_time is None or t == self._previous_time \
             else t - self._previous_time
