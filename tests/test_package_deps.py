@@ -29,7 +29,7 @@ ROSDEP_KEYS = {
     'networkx': 'python3-networkx',
 }
 # Imported by tests from the repository's tests/ folder (pytest.ini's pythonpath), not packages.
-REPOSITORY_MODULES = {'reference_models', 'conftest'}
+REPOSITORY_MODULES = {'reference_models', 'parking_reference', 'conftest'}
 DEPEND_TAGS = {'exec': ('depend', 'exec_depend', 'build_export_depend'),
                'test': ('depend', 'exec_depend', 'build_export_depend', 'test_depend')}
 
