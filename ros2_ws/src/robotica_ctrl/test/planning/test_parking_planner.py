@@ -4,9 +4,9 @@ End-to-end tests of the parallel-parking planner (issue 21, catalogue §14.4-§1
 Every path is checked here with geometry independent of the planner: the parked cars and the
 curb are rectangles written in tests/parking_reference.py, and the body swept between two
 postures is the convex hull of the two footprints (SciPy's ConvexHull), tested against each
-rectangle by the separating-axis theorem. The hull misses the true swept region by at most the sagitta of a
-corner's arc over one 5 cm step (under 0.4 mm here), so the obstacles are grown by 1 mm
-more than the clearance asserted.
+rectangle by the separating-axis theorem. The hull misses the true swept region by at most the
+sagitta of a corner's arc over one 5 cm step (under 0.4 mm here), so the obstacles are grown
+by 1 mm more than the clearance asserted.
 """
 
 import itertools
