@@ -31,7 +31,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from robotica_ctrl.mobile.reactive import GeneralisedPotentialParams, VirtualForceFieldParams
 from robotica_kin.parameter_specs import parameter_values, ParameterError, ParameterSpec
-from robotica_kin.world.rasterise import world_grid
+from robotica_kin.world.rasterise import world_as_grid
 from robotica_kin.world.shapes import World
 
 from .continuous_curvature import continuous_curvature_path
@@ -115,8 +115,7 @@ def plan_path(world: World, start: ArrayLike, goal: ArrayLike,
     o = planner_options(options or {})
     budget = SearchBudget(int(o['max_expansions']), float(o['max_seconds']))
     method, radius = o['method'], o['robot_radius']
-    geometric = world.grid is None
-    if method in ('visibility_graph', 'voronoi') and not geometric:
+    if method in ('visibility_graph', 'voronoi') and world.grid is not None:
         return PlanResult.none(f'{method} plans among walls, polygons and circles: this world '
                                'is a grid (use astar)')
     if method == 'visibility_graph':
@@ -132,9 +131,7 @@ def plan_path(world: World, start: ArrayLike, goal: ArrayLike,
                                  PotentialPlannerParams(robot_radius=max(radius, 1e-3)),
                                  budget, clock)
     else:
-        grid = world.grid if world.grid is not None and geometric is False \
-            and not len(world.segments) and not len(world.circles) \
-            else world_grid(world, o['resolution'])
+        grid = world_as_grid(world, o['resolution'])
         result = grid_astar(grid, start, goal, int(o['neighbours']), radius,
                             unknown_is_obstacle=o['unknown_is_obstacle'], budget=budget,
                             clock=clock)

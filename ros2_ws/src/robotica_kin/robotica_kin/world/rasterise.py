@@ -16,7 +16,7 @@ from robotica_kin.world.occupancy_grid import OccupancyGrid
 from robotica_kin.world.queries import distance_to_obstacles
 from robotica_kin.world.shapes import World
 
-__all__ = ['MAX_CELLS', 'world_grid']
+__all__ = ['MAX_CELLS', 'world_as_grid', 'world_grid']
 
 MAX_CELLS = 4_000_000   # of a drawn grid (2000 x 2000): beyond it, raise the resolution
 
@@ -69,3 +69,18 @@ def world_grid(world: World, resolution: float = 0.05, margin: float = 0.5) -> O
     occupied = distance_to_obstacles(world, centres) <= reach
     data = np.where(occupied, 100, 0).astype(np.int8).reshape(rows, cols)
     return OccupancyGrid(data, resolution, (float(low[0]), float(low[1]), 0.0))
+
+
+def world_as_grid(world: World, resolution: float = 0.05) -> OccupancyGrid:
+    """
+    Return the world's own grid when it is nothing else, else :func:`world_grid` of it.
+
+    A map file's grid keeps its cells and resolution; walls, polygons or circles (with or
+    without a grid) are drawn at ``resolution`` [m/cell]. WorldError as :func:`world_grid`.
+
+    >>> world_as_grid(World(walls=[[0.0, 0.0, 1.0, 0.0]]), 0.5).resolution
+    0.5
+    """
+    if world.grid is not None and not len(world.segments) and not len(world.circles):
+        return world.grid
+    return world_grid(world, resolution)

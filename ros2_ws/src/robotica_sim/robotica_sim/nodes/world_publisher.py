@@ -22,7 +22,7 @@ from robotica_kin.ros.grid_messages import grid_message
 from robotica_kin.ros.guarded import GuardedNode
 from robotica_kin.ros.parameters import declare
 from robotica_kin.ros.qos import LATCHED_QOS
-from robotica_kin.world.rasterise import world_grid
+from robotica_kin.world.rasterise import world_as_grid
 from robotica_kin.world.shapes import World
 from robotica_kin.world.world_file import load_world_file
 from std_msgs.msg import ColorRGBA
@@ -45,8 +45,7 @@ class WorldPublisherNode(GuardedNode):
         if not path:
             raise ValueError('parameter world_file is required')
         world = load_world_file(Path(path))   # WorldError (a ValueError): one line, exit 2
-        grid = world.grid if world.grid is not None and not len(world.segments) \
-            and not len(world.circles) else world_grid(world, resolution)
+        grid = world_as_grid(world, resolution)
         self.create_publisher(OccupancyGridMsg, '/map', LATCHED_QOS).publish(
             grid_message(grid, frame))
         self.create_publisher(MarkerArray, '~/markers', LATCHED_QOS).publish(
