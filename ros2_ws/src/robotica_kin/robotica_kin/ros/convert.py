@@ -195,22 +195,45 @@ def path_points(msg: Path) -> NDArray[np.float64]:
                     dtype=float).reshape(-1, 2)
 
 
+def path_postures(msg: Path) -> NDArray[np.float64]:
+    """
+    Return the postures of a ``nav_msgs/Path`` as an (N, 3) array (x [m], y [m], yaw [rad]).
+
+    The yaw is each pose's orientation about z (:func:`quaternion_to_yaw`), in (-π, π]: a
+    planner's vehicle heading, which on a reverse segment points against the travel.
+
+    >>> path_postures(path_message([[0.0, 0.0, 0.0], [-1.0, 0.0, 0.0]], 'map')).tolist()
+    [[0.0, 0.0, 0.0], [-1.0, 0.0, 0.0]]
+    """
+    return np.array([[p.pose.position.x, p.pose.position.y,
+                      quaternion_to_yaw(p.pose.orientation)] for p in msg.poses],
+                    dtype=float).reshape(-1, 3)
+
+
 def path_message(points: ArrayLike, frame_id: str, t: float = 0.0,
                  times: ArrayLike | None = None) -> Path:
     """
-    Build a ``nav_msgs/Path`` through (N, 2) ``points`` [m], each pose facing the next point.
+    Build a ``nav_msgs/Path`` through (N, 2) ``points`` or (N, 3) postures [m, m, rad].
 
+    Through points each pose faces the next point (the last faces as the one before it);
+    through postures (x, y, yaw) each pose's orientation is its yaw, e.g. a vehicle's heading,
+    which points against the travel on a reverse segment (read back by :func:`path_postures`).
     The header is stamped ``t`` [s]; each pose is stamped too, with its time in ``times`` (N,)
     [s] when the path is a trajectory, else ``t``.
     """
-    pts = np.asarray(points, dtype=float).reshape(-1, 2)
+    given = np.asarray(points, dtype=float)
+    postured = given.ndim == 2 and given.shape[1] == 3
+    pts = given[:, :2] if postured else given.reshape(-1, 2)
     stamps = np.full(len(pts), float(t)) if times is None else np.asarray(times, dtype=float)
     if stamps.shape != (len(pts),):
         raise ValueError(f'times must have one value per point ({len(pts)}), got shape '
                          f'{stamps.shape}')
-    steps = np.diff(pts, axis=0)
-    headings = np.arctan2(steps[:, 1], steps[:, 0]) if len(steps) else np.zeros(0)
-    headings = np.append(headings, headings[-1] if len(headings) else 0.0)
+    if postured:
+        headings = given[:, 2]
+    else:
+        steps = np.diff(pts, axis=0)
+        headings = np.arctan2(steps[:, 1], steps[:, 0]) if len(steps) else np.zeros(0)
+        headings = np.append(headings, headings[-1] if len(headings) else 0.0)
     msg = Path()
     msg.header.stamp = seconds_to_stamp(t)
     msg.header.frame_id = frame_id
