@@ -1,7 +1,8 @@
 """
 Tests of robotica_ctrl.mobile.tracking_laws: every law built by name, behind one interface.
 
-References: a unicycle (and a bicycle with the steering lag (9.9)) integrated here; Ejemplo
+References: a unicycle (and a bicycle with the steering lag (9.9)) integrated here, a bicycle
+x' = v cos θ, y' = v sin θ, θ' = v tan α / l (book (4.119)) driven in reverse; Ejemplo
 9.1's finding (book §9.3.1) that the actuator lag accentuates the oscillation of a small
 look-ahead L; the ramp of Ejemplo 4.9 (c) worked by hand.
 """
@@ -11,9 +12,11 @@ import numpy as np
 import pytest
 from robotica_ctrl.mobile.path import PolylinePath
 from robotica_ctrl.mobile.path_shapes import straight_line
+from robotica_ctrl.mobile.pure_pursuit import PurePursuit, PurePursuitParams
+from robotica_ctrl.mobile.reversing_pure_pursuit import ReversingPurePursuit
 from robotica_ctrl.mobile.tracker_base import TrackerOutput
 from robotica_ctrl.mobile.tracking_laws import (check_gains, law_defaults, law_for_path,
-                                                LAW_PARAMETERS, LAWS, make_law)
+                                                LAW_PARAMETERS, LAWS, make_law, steering_angle)
 from robotica_kin.parameter_specs import ParameterError
 
 STEP = 0.01   # [s]
@@ -91,7 +94,7 @@ def test_bad_names_and_gains_are_refused():
 
 
 def test_parameter_specs_cover_every_law_with_valid_defaults():
-    assert set(LAW_PARAMETERS) == {*LAWS, 'open_loop'}
+    assert set(LAW_PARAMETERS) == {*LAWS, 'reversing_pure_pursuit', 'open_loop'}
     for law in LAW_PARAMETERS:
         for name, spec in LAW_PARAMETERS[law].items():
             assert spec.description
@@ -156,3 +159,75 @@ def test_gains_are_checked_against_their_specs_then_together():
                                                     'must be in [0.01, 100], got 0.0')
     with pytest.raises(ValueError, match='minimum <= maximum'):
         check_gains('adaptive_pure_pursuit', {'min_lookahead': 3.0, 'max_lookahead': 1.0})
+
+
+def test_reversing_pure_pursuit_is_built_by_name_with_pure_pursuits_gains():
+    assert LAW_PARAMETERS['reversing_pure_pursuit'] == LAW_PARAMETERS['pure_pursuit']
+    path = PolylinePath(straight_line([0.0, 0.0], [4.0, 0.0]))
+    law = make_law('reversing_pure_pursuit', path, {'lookahead_distance': 1.0})
+    assert isinstance(law, ReversingPurePursuit) and law.pieces == 1
+    # Without postures they face along the path: pure pursuit itself, command for command.
+    plain = PurePursuit(path, PurePursuitParams(lookahead_distance=1.0))
+    for pose in ([0.0, 0.3, 0.0], [1.0, -0.2, 0.4], [2.5, 0.1, -0.3]):
+        assert law.update(pose, 0.0)[:4] == pytest.approx(plain.update(pose, 0.0)[:4])
+    check_gains('reversing_pure_pursuit', {'lookahead_distance': 1.0})
+    with pytest.raises(ParameterError) as info:
+        check_gains('reversing_pure_pursuit', {'desired_linear_velocity': -0.5})
+    assert info.value.name == 'desired_linear_velocity'
+    with pytest.raises(ValueError, match='must not exceed'):
+        check_gains('reversing_pure_pursuit', {'desired_linear_velocity': 0.1,
+                                               'min_approach_velocity': 0.2})
+    with pytest.raises(ValueError, match='has no gain'):
+        check_gains('reversing_pure_pursuit', {'k1': 1.0})
+
+
+def test_headings_that_reverse_make_the_law_reverse_after_the_cusp():
+    # Forward 1 m along +x, then back to the start, the heading 0 throughout (the cusp point
+    # repeated, as a planner may give it): forward commands on the way out, one stop at the
+    # cusp, then v < 0. Other laws ignore the headings.
+    x = np.concatenate([np.linspace(0.0, 1.0, 11), np.linspace(1.0, 0.0, 11)])
+    points = np.column_stack([x, np.zeros_like(x)])
+    law, path, timed = law_for_path('reversing_pure_pursuit', points,
+                                    headings=np.zeros(len(x)))
+    assert law.pieces == 2 and path.length == pytest.approx(2.0) and not timed
+    commands = [law.update([xk, 0.0, 0.0], 0.0).linear for xk in np.arange(0.0, 1.0, 0.25)]
+    assert min(commands) > 0.0
+    assert law.update([1.0, 0.0, 0.0], 0.0)[:2] == (0.0, 0.0)   # the stop at the cusp
+    out = law.update([1.0, 0.0, 0.0], 0.0)
+    assert out.linear == pytest.approx(-0.5) and out.angular == pytest.approx(0.0, abs=1e-12)
+    assert out.extras['direction'] == -1 and not out.finished
+    assert law_for_path('pure_pursuit', points, headings=np.zeros(len(x)))[0].update(
+        [0.0, 0.0, 0.0], 0.0).linear > 0.0
+    with pytest.raises(ValueError, match='headings must be one per point'):
+        law_for_path('reversing_pure_pursuit', points, headings=[0.0])
+    with pytest.raises(ValueError, match='finite'):
+        law_for_path('reversing_pure_pursuit', points, headings=np.full(len(x), math.nan))
+
+
+def test_a_bicycle_reversing_onto_a_path_with_the_steering_of_the_laws_yaw_rate():
+    # A reverse path from (3, 0) to (0, 0), heading 0 (the car backs along -x). The car starts
+    # 0.3 m left of it (+y) facing +x: the law's ω through α = atan(l ω / v) of the node gives
+    # the bicycle exactly θ' = v tan α / l = ω with v < 0, and it backs onto the path.
+    wheelbase, dt = 1.5, 0.01
+    x = np.linspace(3.0, 0.0, 31)
+    law, _, _ = law_for_path('reversing_pure_pursuit', np.column_stack([x, np.zeros(31)]),
+                             {'lookahead_distance': 1.0}, headings=np.zeros(31))
+    pose = np.array([3.0, 0.3, 0.0])
+    first = law.update(pose, 0.0)
+    assert first.cross_track == pytest.approx(0.3) and first.heading_error == 0.0
+    assert first.linear < 0.0 and first.angular > 0.0   # backing to the right: nose turns left
+    law.reset()
+    cross = []
+    for k in range(2000):
+        out = law.update(pose, k * dt)
+        if out.finished:
+            break
+        v, w = out.linear, out.angular
+        alpha = steering_angle(v, w, wheelbase)
+        assert v < 0.0 and v * math.tan(alpha) / wheelbase == pytest.approx(w, abs=1e-12)
+        pose = pose + dt * np.array([v * math.cos(pose[2]), v * math.sin(pose[2]),
+                                     v * math.tan(alpha) / wheelbase])
+        cross.append(out.cross_track)
+    assert out.finished and pose[0] < 0.1
+    assert abs(pose[1]) < 0.02 and abs(pose[2]) < 0.05
+    assert max(abs(c) for c in cross[len(cross) // 2:]) < 0.05

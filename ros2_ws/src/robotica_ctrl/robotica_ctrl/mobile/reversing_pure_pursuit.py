@@ -10,7 +10,13 @@ a reverse piece is followed as pure pursuit would follow it with the vehicle tur
 heading θ + π), and the command is mirrored: the speed negated, the yaw rate kept (the turned
 vehicle's yaw rate is the vehicle's own). At the end of each piece the vehicle stops (the
 geometric mode of the parking planner: the wheels are re-oriented standing) and the next piece
-begins; the path is finished at the end of the last.
+begins; the path is finished at the end of the last. The errors are measured against the
+postures' headings (left of the heading is > 0 forward and reverse alike), so they run on
+continuously through a cusp.
+
+It is the ``reversing_pure_pursuit`` law of the registry
+(:mod:`~robotica_ctrl.mobile.tracking_laws`) and of the ``path_tracker`` node, which reads the
+postures from a ``nav_msgs/Path``: each pose's position and the yaw of its orientation.
 """
 
 import math
@@ -82,12 +88,10 @@ class ReversingPurePursuit:
         cusps = np.flatnonzero(np.diff(directions)) + 1   # step index where direction changes
         bounds = [0, *cusps.tolist(), len(directions)]
         self.params = PurePursuitParams() if params is None else params
-        self._pieces: list[tuple[PurePursuit, int, float]] = []
-        done = 0.0
+        self._pieces: list[tuple[PurePursuit, int]] = []
         for first, last in zip(bounds[:-1], bounds[1:]):   # steps first..last-1: points ..last
             path = PolylinePath(p[first:last + 1, :2])
-            self._pieces.append((PurePursuit(path, self.params), int(directions[first]), done))
-            done += path.length
+            self._pieces.append((PurePursuit(path, self.params), int(directions[first])))
         self._index = 0
 
     @property
@@ -103,30 +107,41 @@ class ReversingPurePursuit:
     def set_gains(self, gains: Mapping[str, Any]) -> None:
         """Replace pure pursuit's tunables (names of :class:`PurePursuitParams`) on every piece."""
         self.params = replace_gains(self.params, gains)
-        for law, _, _ in self._pieces:
+        for law, _ in self._pieces:
             law.set_gains(gains)
 
     def reset(self) -> None:
         """Start again from the first piece."""
         self._index = 0
-        for law, _, _ in self._pieces:
+        for law, _ in self._pieces:
             law.reset()
 
     def update(self, pose: ArrayLike, time: float, speed: float | None = None) -> TrackerOutput:
         """
         Return the command (v [m/s], ω [rad/s]) for the vehicle at ``pose`` (x, y, θ).
 
-        v < 0 on a reverse piece; (0, 0) when a piece ends (a stop at the cusp).
+        v < 0 on a reverse piece; (0, 0) when a piece ends (a stop at the cusp), the next
+        update following the next piece. ``speed`` is the measured forward speed [m/s] (< 0
+        reversing). The errors are the piece's, measured against the postures' headings: the
+        cross-track error > 0 left of the path as the vehicle faces along it (on a reverse
+        piece: left of the heading, not of the travel), the heading error θ - θ_path with
+        θ_path the posture's heading, the along-track offset beyond the piece's ends (> 0 past
+        its end in the direction of travel). ``extras``: pure pursuit's ``curvature`` γ [1/m]
+        (of the turned vehicle, ω = |v| γ), ``piece`` (its index) and ``direction`` (+1, -1).
+
+        Raises
+        ------
+        ValueError
+            If ``pose`` is not a finite (3,) vector.
+
         """
         x, y, theta = check_pose(pose).tolist()
-        law, direction, done = self._pieces[self._index]
+        law, direction = self._pieces[self._index]
         turned = [x, y, theta + math.pi] if direction < 0 else [x, y, theta]
         out = law.update(turned, time, None if speed is None else direction * speed)
-        last = self._index == len(self._pieces) - 1
-        if out.finished and not last:
+        extras = {**out.extras, 'piece': self._index, 'direction': direction}
+        out = out._replace(cross_track=direction * out.cross_track, extras=extras)
+        if out.finished and self._index < len(self._pieces) - 1:
             self._index += 1
-            return out._replace(linear=0.0, angular=0.0, finished=False,
-                                along_track=done + out.along_track)
-        return out._replace(linear=direction * out.linear, along_track=done + out.along_track,
-                            heading_error=out.heading_error if direction > 0 else
-                            math.remainder(out.heading_error, 2.0 * math.pi))
+            return out._replace(linear=0.0, angular=0.0, finished=False)
+        return out._replace(linear=direction * out.linear)

@@ -9,29 +9,35 @@ ranges), and every law answers
 :class:`~robotica_ctrl.mobile.tracker_base.TrackerOutput`: the velocity command
 (v [m/s], ω [rad/s]), the tracking errors and the law's own telemetry.
 
-========================= ============================================================ =======
-law                       class                                                        book
-========================= ============================================================ =======
-``pure_pursuit``          :class:`~robotica_ctrl.mobile.pure_pursuit.PurePursuit`      §9.3.1
-``adaptive_pure_pursuit`` :class:`~robotica_ctrl.mobile.adaptive_lookahead.AdaptivePurePursuit`
-                          (L by speed, curvature or error)                             §9.3.1
-``quintic``               :class:`~robotica_ctrl.mobile.quintic_tracker.QuinticTracker` §9.3.2
-``trajectory_tracking``   :class:`~robotica_ctrl.mobile.trajectory_tracking.TrajectoryTracker`
-                          (linear, scheduled or nonlinear, Canudas de Wit et al.)      §9.4.2
-``frenet``                :class:`~robotica_ctrl.mobile.frenet_path_following.FrenetPathFollower`
-                          (linear or nonlinear)                                        §9.4.3
-``gpc``                   :class:`~robotica_ctrl.mobile.gpc_tracker.GpcPathTracker`    §9.5
-``open_loop``             :class:`~robotica_ctrl.mobile.open_loop.OpenLoop`            §4.7
-                          (a profile of (v, ω) against time, no feedback)
-========================= ============================================================ =======
+========================== ============================================================ =======
+law                        class                                                        book
+========================== ============================================================ =======
+``pure_pursuit``           :class:`~robotica_ctrl.mobile.pure_pursuit.PurePursuit`      §9.3.1
+``adaptive_pure_pursuit``  :class:`~robotica_ctrl.mobile.adaptive_lookahead.AdaptivePurePursuit`
+                           (L by speed, curvature or error)                             §9.3.1
+``reversing_pure_pursuit`` :class:`~.reversing_pure_pursuit.ReversingPurePursuit`      §9.3.1
+                           (path of postures cut at its cusps, reverse pieces backwards)
+``quintic``                :class:`~robotica_ctrl.mobile.quintic_tracker.QuinticTracker` §9.3.2
+``trajectory_tracking``    :class:`~robotica_ctrl.mobile.trajectory_tracking.TrajectoryTracker`
+                           (linear, scheduled or nonlinear, Canudas de Wit et al.)      §9.4.2
+``frenet``                 :class:`~robotica_ctrl.mobile.frenet_path_following.FrenetPathFollower`
+                           (linear or nonlinear)                                        §9.4.3
+``gpc``                    :class:`~robotica_ctrl.mobile.gpc_tracker.GpcPathTracker`    §9.5
+``open_loop``              :class:`~robotica_ctrl.mobile.open_loop.OpenLoop`            §4.7
+                           (a profile of (v, ω) against time, no feedback)
+========================== ============================================================ =======
 
-:data:`LAWS` lists the six that close the loop on the pose, those the tracking benchmark
-compares. Trajectory tracking needs a reference in time: the path's own timing when it has one
-(the ``times`` of :func:`make_law`, from the stamps of a ``nav_msgs/Path``), else the path
-driven at ``reference_speed`` from the first update on. GPC runs once per its ``sample_time``
-and holds its command in between, as the book's discrete controller does. The open-loop
-profile reads neither the pose nor the path. Frames are REP-103: x forward, y left, θ from the
-x axis, lateral errors > 0 left of the path.
+:data:`LAWS` lists the six the tracking benchmark compares (reversing pure pursuit, on its
+paths without cusps, is pure pursuit). Trajectory tracking needs a reference in time: the
+path's own timing when it has one (the ``times`` of :func:`make_law`, from the stamps of a
+``nav_msgs/Path``), else the path driven at ``reference_speed`` from the first update on. GPC
+runs once per its ``sample_time`` and holds its command in between, as the book's discrete
+controller does. The open-loop profile reads neither the pose nor the path. Reversing pure
+pursuit follows the path's postures (x, y, θ): the ``postures`` of :func:`make_law`, the
+points with the ``headings`` of :func:`law_for_path` (the yaws of a ``nav_msgs/Path``'s
+orientations). A step against the heading is driven in reverse (v < 0), with a stop at each
+cusp; without headings the postures face along the path and the law is pure pursuit. Frames
+are REP-103: x forward, y left, θ from the x axis, lateral errors > 0 left of the path.
 """
 
 from dataclasses import replace
@@ -49,6 +55,7 @@ from robotica_ctrl.mobile.open_loop import OpenLoop, OpenLoopProfile
 from robotica_ctrl.mobile.path import PolylinePath
 from robotica_ctrl.mobile.pure_pursuit import PurePursuit, PurePursuitParams
 from robotica_ctrl.mobile.quintic_tracker import QuinticTracker, QuinticTrackerParams
+from robotica_ctrl.mobile.reversing_pure_pursuit import ReversingPurePursuit
 from robotica_ctrl.mobile.tracker_base import replace_gains, TrackingLaw
 from robotica_ctrl.mobile.trajectory_tracking import (LAWS as TRAJECTORY_LAWS,
                                                       TrajectoryTracker,
@@ -61,7 +68,10 @@ __all__ = ['COMMAND_TYPES', 'LAWS', 'LAW_PARAMETERS', 'POSE_SOURCES', 'TRACKER_P
 
 LAWS = ('pure_pursuit', 'adaptive_pure_pursuit', 'quintic', 'trajectory_tracking', 'frenet',
         'gpc')
-"""The laws that close the loop on the pose; :data:`LAW_PARAMETERS` also holds ``open_loop``."""
+"""
+The laws the tracking benchmark compares; :data:`LAW_PARAMETERS` also holds
+``reversing_pure_pursuit`` (pure pursuit on a path without cusps) and ``open_loop``.
+"""
 
 
 _TRACKING = {   # the path-end and search tunables every path law shares
@@ -167,6 +177,7 @@ def _specs(defaults: Any, numbers: dict[str, tuple[str, float, float]],
 
 LAW_PARAMETERS: dict[str, dict[str, ParameterSpec]] = {
     'pure_pursuit': _specs(PurePursuitParams(), _PURE_PURSUIT),
+    'reversing_pure_pursuit': _specs(PurePursuitParams(), _PURE_PURSUIT),
     'adaptive_pure_pursuit': _specs(
         PurePursuitParams(), {k: v for k, v in _PURE_PURSUIT.items()
                               if k != 'lookahead_distance'} | _RULE,
@@ -191,7 +202,7 @@ LAW_PARAMETERS: dict[str, dict[str, ParameterSpec]] = {
     'open_loop': {name: ParameterSpec((0.0,), description)   # standing still
                   for name, description in _OPEN_LOOP.items()},
 }
-"""Every law :func:`make_law` builds (:data:`LAWS` and ``open_loop``): its parameters by name."""
+"""Every law :func:`make_law` builds (:data:`LAWS`, ``reversing_pure_pursuit``, ``open_loop``)."""
 
 POSE_SOURCES = ('odom', 'ground_truth')
 COMMAND_TYPES = ('twist', 'steering')
@@ -213,21 +224,37 @@ TRACKER_PARAMETERS: dict[str, ParameterSpec] = {
 }
 """The path tracker's own parameters (not a law's gains): ranges and choices."""
 
-_BUILDERS: dict[str, Callable[[PolylinePath, Mapping[str, Any], ArrayLike | None,
-                               ArrayLike | None], TrackingLaw]] = {
-    'pure_pursuit': lambda path, gains, times, stations: PurePursuit(
+_Builder = Callable[[PolylinePath, Mapping[str, Any], ArrayLike | None, ArrayLike | None,
+                     ArrayLike | None], TrackingLaw]
+"""A law from (path, gains, times, stations, postures), the arguments of :func:`make_law`."""
+
+
+def _reversing(path: PolylinePath, gains: Mapping[str, Any],
+               postures: ArrayLike | None) -> ReversingPurePursuit:
+    """Return reversing pure pursuit of ``postures`` (default: ``path`` at its tangents)."""
+    if postures is None:
+        headings = path.headings
+        postures = np.column_stack([path.points, np.append(headings, headings[-1])])
+    return ReversingPurePursuit(postures, replace_gains(PurePursuitParams(), gains))
+
+
+_BUILDERS: dict[str, _Builder] = {
+    'pure_pursuit': lambda path, gains, times, stations, postures: PurePursuit(
         path, replace_gains(PurePursuitParams(), gains)),
-    'adaptive_pure_pursuit': lambda path, gains, times, stations: AdaptivePurePursuit(
+    'reversing_pure_pursuit': lambda path, gains, times, stations, postures: _reversing(
+        path, gains, postures),
+    'adaptive_pure_pursuit': lambda path, gains, times, stations, postures: AdaptivePurePursuit(
         path, *adaptive_params(gains)),
-    'quintic': lambda path, gains, times, stations: QuinticTracker(
+    'quintic': lambda path, gains, times, stations, postures: QuinticTracker(
         path, replace_gains(QuinticTrackerParams(), gains)),
-    'trajectory_tracking': lambda path, gains, times, stations: TrajectoryTracker(
+    'trajectory_tracking': lambda path, gains, times, stations, postures: TrajectoryTracker(
         path, replace_gains(TrajectoryTrackingParams(), gains), times, stations),
-    'frenet': lambda path, gains, times, stations: FrenetPathFollower(
+    'frenet': lambda path, gains, times, stations, postures: FrenetPathFollower(
         path, replace_gains(FrenetParams(), gains)),
-    'gpc': lambda path, gains, times, stations: GpcPathTracker(
+    'gpc': lambda path, gains, times, stations, postures: GpcPathTracker(
         path, replace_gains(GpcTrackerParams(), gains)),
-    'open_loop': lambda path, gains, times, stations: OpenLoop(OpenLoopProfile(**gains)),
+    'open_loop': lambda path, gains, times, stations, postures: OpenLoop(
+        OpenLoopProfile(**gains)),
 }
 
 
@@ -262,7 +289,8 @@ def _law_specs(law: str) -> dict[str, ParameterSpec]:
 
 
 def make_law(law: str, path: PolylinePath, gains: Mapping[str, Any] | None = None,
-             times: ArrayLike | None = None, stations: ArrayLike | None = None) -> TrackingLaw:
+             times: ArrayLike | None = None, stations: ArrayLike | None = None,
+             postures: ArrayLike | None = None) -> TrackingLaw:
     """
     Return the tracking law named ``law`` (a key of :data:`LAW_PARAMETERS`) for ``path``.
 
@@ -280,11 +308,16 @@ def make_law(law: str, path: PolylinePath, gains: Mapping[str, Any] | None = Non
     stations : array_like, optional
         Arc length [m] of each point ``times`` refers to (default ``path.s``; give them when
         the points had duplicates that :class:`PolylinePath` dropped).
+    postures : array_like, shape (N, 3), optional
+        The path as postures (x [m], y [m], θ [rad]) in the order of travel, duplicates kept
+        (a cusp may repeat a point): reversing pure pursuit only, which drives a step against
+        θ in reverse (default: ``path``'s points at their tangent headings, all forward).
 
     Raises
     ------
     ValueError
-        For an unknown law or gain name, or a gain the law refuses.
+        For an unknown law or gain name, a gain the law refuses, or postures that are not
+        finite (N, 3) (reversing pure pursuit).
 
     >>> law = make_law('pure_pursuit', PolylinePath([[0.0, 0.0], [5.0, 0.0]]))
     >>> law.update([0.0, 0.0, 0.0], 0.0).linear
@@ -296,7 +329,7 @@ def make_law(law: str, path: PolylinePath, gains: Mapping[str, Any] | None = Non
     if unknown:
         raise ValueError(f'{law} has no gain {sorted(unknown)}; its gains: {sorted(specs)}')
     merged = {**law_defaults(law), **(gains or {})}
-    return _BUILDERS[law](path, merged, times, stations)
+    return _BUILDERS[law](path, merged, times, stations, postures)
 
 
 def check_gains(law: str, gains: Mapping[str, Any]) -> None:
@@ -323,19 +356,24 @@ def check_gains(law: str, gains: Mapping[str, Any]) -> None:
 
 
 def law_for_path(law: str, points: ArrayLike, gains: Mapping[str, Any] | None = None,
-                 times: ArrayLike | None = None) -> tuple[TrackingLaw, PolylinePath, bool]:
+                 times: ArrayLike | None = None, headings: ArrayLike | None = None
+                 ) -> tuple[TrackingLaw, PolylinePath, bool]:
     """
     Return the law ``law`` for the path through ``points`` (N, 2) [m], the path, and if timed.
 
     What the path tracker does with each path it receives: ``times`` (N,) [s], the stamps of
     the path's poses, make it a trajectory when they increase strictly (trajectory tracking
     follows them at the arc length of each point, duplicates included); otherwise they are
-    ignored.
+    ignored. ``headings`` (N,) [rad], the yaw of each pose's orientation, are the vehicle's
+    heading at each point for reversing pure pursuit (a step against the heading is driven
+    in reverse; the points with them are the law's postures, duplicates kept); the other laws
+    ignore them.
 
     Raises
     ------
     ValueError
-        For a path of fewer than two distinct points, or as :func:`make_law`.
+        For a path of fewer than two distinct points, headings that are not one per point,
+        or as :func:`make_law`.
 
     Examples
     --------
@@ -343,12 +381,23 @@ def law_for_path(law: str, points: ArrayLike, gains: Mapping[str, Any] | None = 
     ...                                 times=[0.0, 0.0])
     >>> path.length, timed
     (5.0, False)
+    >>> law, _, _ = law_for_path('reversing_pure_pursuit', [[0, 0], [1, 0], [0, 0]],
+    ...                          headings=[0, 0, 0])   # 1 m forward, then 1 m back
+    >>> [law.update([1.0, 0.0, 0.0], 0.0).linear for _ in range(2)]   # at the cusp: stop, back
+    [0.0, -0.5]
 
     """
     xy = np.asarray(points, dtype=np.float64).reshape(-1, 2)
+    postures = None
+    if headings is not None:
+        yaw = np.asarray(headings, dtype=np.float64)
+        if yaw.shape != (len(xy),):
+            raise ValueError(f'headings must be one per point ({len(xy)}), got shape '
+                             f'{yaw.shape}')
+        postures = np.column_stack([xy, yaw])
     stamps = np.asarray(times if times is not None else [], dtype=np.float64)
     timed = stamps.size == len(xy) >= 2 and bool(np.all(np.diff(stamps) > 0.0))
     path = PolylinePath(xy)
     stations = np.concatenate(([0.0], np.cumsum(np.hypot(*np.diff(xy, axis=0).T))))
     return make_law(law, path, gains, stamps if timed else None,
-                    stations if timed else None), path, timed
+                    stations if timed else None, postures), path, timed
