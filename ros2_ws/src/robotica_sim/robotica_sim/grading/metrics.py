@@ -8,7 +8,9 @@ with its unit, topics and definition; docs/grading.md explains them):
   against the reference ``/path`` (the closest point is searched within a window around the
   progress, as the trackers do, so that a closed or self-crossing path is followed lap by
   lap), completion, time, path length, control effort, collisions and time in contact (from
-  the simulator's ``/bumper``, recorded when the run has a world);
+  the simulator's ``/bumper``, recorded when the run has a world); the final pose error
+  against the last pose of the last ``/path`` (a parking plan's parked goal, issue 21) and the
+  number of manoeuvres (:func:`travel_stretches` of the truth's speed);
 - **estimation** (book ch. 7): the error of the ``/odom`` estimate against the ground truth,
   interpolated at the estimate's stamps, and the fraction of samples within 3 sigma;
 - **arm** (book ch. 8): joint errors ``e = q_d - q`` (8.30) of the joint controller, settling
@@ -36,7 +38,7 @@ from robotica_sim.grading.series import RunSeries, Series, TOPICS
 __all__ = ['METRICS', 'MetricInfo', 'MetricParams', 'MetricValue', 'RunMetrics',
            'compute_metrics', 'contact_events', 'energy', 'max_abs', 'normal_fit', 'overshoot',
            'path_errors', 'pose_errors', 'reading_error', 'rms', 'settling_time',
-           'total_variation', 'travelled_length']
+           'total_variation', 'travel_stretches', 'travelled_length']
 
 MetricValue = float | bool | list[float | None] | None
 """A metric's value: a number, a flag, one number per joint (None: n/a for that joint)."""
@@ -50,9 +52,11 @@ class MetricParams:
     search_window: float = 2.0    # [m] half-width of the closest-point search around progress
     settling_band: float = 0.02   # [-] settling band, fraction of the joint's reference span
     sigma_bound: float = 3.0      # [-] consistency bound of the estimate, in std deviations
+    stop_speed: float = 0.01      # [m/s] |v| up to this is a stop, for manoeuvres
 
     def __post_init__(self) -> None:
-        for name in ('goal_tolerance', 'search_window', 'settling_band', 'sigma_bound'):
+        for name in ('goal_tolerance', 'search_window', 'settling_band', 'sigma_bound',
+                     'stop_speed'):
             value = getattr(self, name)
             if isinstance(value, bool) or not isinstance(value, (int, float)) or not (
                     math.isfinite(value) and value > 0.0):
@@ -117,6 +121,19 @@ METRICS: dict[str, MetricInfo] = {
         'a /path whose pose stamps increase: a trajectory)'),
     'max_trajectory_error': MetricInfo(
         'm', 'mobile', (_TRUTH, _PATH), 'largest distance, as rms_trajectory_error'),
+    'final_position_error': MetricInfo(
+        'm', 'mobile', (_TRUTH, _PATH),
+        "distance from the truth's last position to the last pose of the last /path (a "
+        "parking plan's parked goal; a tracked path's end)"),
+    'final_heading_error': MetricInfo(
+        'rad', 'mobile', (_TRUTH, _PATH),
+        "|truth's last heading minus the yaw of the last /path pose's orientation|, wrapped "
+        'to [0, pi] (the orientation is the vehicle heading, also on a reverse segment)'),
+    'manoeuvres': MetricInfo(
+        '-', 'mobile', (_TRUTH,),
+        "stretches of travel in one direction of the truth's longitudinal speed v: samples "
+        'with |v| <= stop_speed are stops and skipped; 1 + the sign changes among the moving '
+        'samples (a stop between two arcs of one direction is no new one), 0 if it never moves'),
     'collisions': MetricInfo(
         'count', 'mobile', (TOPICS['bumper'],),
         "contacts with the obstacles of the scenario's world: a contact starts when the "
@@ -216,6 +233,42 @@ def travelled_length(x: ArrayLike, y: ArrayLike) -> float:
     """
     return float(np.sum(np.hypot(np.diff(np.asarray(x, dtype=np.float64)),
                                  np.diff(np.asarray(y, dtype=np.float64)))))
+
+
+def travel_stretches(v: ArrayLike, stop_speed: float) -> int:
+    """
+    Return the number of manoeuvres: stretches of travel in one direction of a speed signal.
+
+    Samples with ``|v| <= stop_speed`` are stops and are skipped; a stretch is a maximal run of
+    moving samples of one sign, and two stretches of the same sign separated only by a stop
+    are one (the stop between the two arcs of a reverse manoeuvre, where the wheels are
+    re-oriented, starts no new manoeuvre). So the count is 1 + the number of sign changes
+    among the moving samples, and 0 when nothing moves.
+
+    Parameters
+    ----------
+    v : array_like, shape (n,)
+        Longitudinal speed [m/s] (> 0 forward), in time order.
+    stop_speed : float
+        [m/s] the largest ``|v|`` that is a stop (>= 0).
+
+    Returns
+    -------
+    int
+
+    Examples
+    --------
+    Forward, stop, reverse, stop, reverse, forward: three manoeuvres.
+
+    >>> travel_stretches([0.5, 0.0, -0.4, 0.005, -0.3, 0.2], 0.01)
+    3
+    >>> travel_stretches([0.0, 0.004, -0.003], 0.01)
+    0
+
+    """
+    speeds = np.asarray(v, dtype=np.float64).ravel()
+    moving = np.sign(speeds[np.abs(speeds) > stop_speed])
+    return int(moving.size and 1 + np.count_nonzero(np.diff(moving)))
 
 
 def path_errors(path: PolylinePath, x: ArrayLike, y: ArrayLike, theta: ArrayLike,
@@ -445,6 +498,9 @@ def _mobile(run: RunSeries, params: MetricParams, out: RunMetrics) -> None:
     if run.bumper is not None:
         values['collisions'], values['time_in_contact'] = contact_events(
             run.bumper.t, run.bumper['in_contact'])
+    if truth is not None and len(truth):
+        values['manoeuvres'] = travel_stretches(truth['v'], params.stop_speed)
+        _final_pose(run, truth, out)
     if truth is not None and run.path is not None and len(run.path) >= 2:
         path = PolylinePath(run.path)
         s, cross, heading = path_errors(path, truth['x'], truth['y'], truth['theta'],
@@ -479,6 +535,25 @@ def _mobile(run: RunSeries, params: MetricParams, out: RunMetrics) -> None:
     if cmd is not None and 'steering' in cmd.columns:
         values['rms_steering'] = rms(cmd['steering'])
         values['steering_variation'] = total_variation(cmd['steering'])
+
+
+def _final_pose(run: RunSeries, truth: Series, out: RunMetrics) -> None:
+    """Set the final position and heading errors against the last /path's last pose."""
+    if run.path is None:
+        return   # absent: compute_metrics says which topic the bag lacks
+    if len(run.path) == 0:
+        out.absent['final_position_error'] = out.absent['final_heading_error'] = (
+            'needs a /path with poses; the last /path has none')
+        return
+    goal = run.path[-1]
+    out.values['final_position_error'] = float(math.hypot(truth['x'][-1] - goal[0],
+                                                          truth['y'][-1] - goal[1]))
+    if run.path_end_heading is None:
+        out.absent['final_heading_error'] = ("needs a finite orientation of the last /path's "
+                                             'last pose, which the bag lacks')
+    else:
+        out.values['final_heading_error'] = abs(float(wrap_to_pi(
+            truth['theta'][-1] - run.path_end_heading)))
 
 
 def _estimation(run: RunSeries, params: MetricParams, out: RunMetrics) -> None:
@@ -620,7 +695,8 @@ def compute_metrics(run: RunSeries, params: MetricParams | None = None) -> RunMe
     run : RunSeries
         The run, from :func:`robotica_sim.grading.series.load_run`.
     params : MetricParams, optional
-        Goal tolerance, search window, settling band, sigma bound; defaults if None.
+        Goal tolerance, search window, settling band, sigma bound, stop speed; defaults if
+        None.
 
     Returns
     -------

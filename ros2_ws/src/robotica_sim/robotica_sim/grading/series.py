@@ -172,6 +172,10 @@ class RunSeries:
       ``range``, ``min_range``, ``max_range`` [m], every reading.
     - ``map_grid``: the last ``/map`` (nav_msgs/OccupancyGrid, latched) as an
       :class:`~robotica_kin.world.occupancy_grid.OccupancyGrid`.
+    - ``path_end_heading``: the yaw [rad], in (-π, π], of the orientation of the last pose of
+      the last ``/path``: the heading the vehicle should end with (a parking plan's
+      orientations are the vehicle's headings, also on reverse segments); None without a
+      ``/path``, for one without poses or with a last orientation that is not finite.
     - ``task_final``: the last step of a task-space law (``/joint_controller/force_control``
       or ``cartesian_control``) as arrays by field: a force law's ``position_reference``,
       ``position`` [m], ``force_reference``, ``force`` [N] (task axes, NaN where a reference is
@@ -204,6 +208,7 @@ class RunSeries:
     ranges: dict[str, Series] = field(default_factory=dict)   # /sonar_<i>, /infrared_<i>
     map_grid: OccupancyGrid | None = None   # the last /map
     task_final: dict[str, NDArray[np.float64]] | None = None   # a task-space law's last step
+    path_end_heading: float | None = None   # [rad] yaw of the last /path pose's orientation
 
     @property
     def is_manipulator(self) -> bool:
@@ -465,14 +470,22 @@ def _grid(msg: Any) -> OccupancyGrid | None:
         return None
 
 
-def _path(msg: Any) -> tuple[NDArray[np.float64], NDArray[np.float64] | None]:
-    """Return the positions (N, 2) [m] of a nav_msgs/Path and its stamps if increasing."""
+def _path(msg: Any) -> tuple[NDArray[np.float64], NDArray[np.float64] | None, float | None]:
+    """
+    Return a nav_msgs/Path's positions (N, 2) [m], its stamps if increasing, its end heading.
+
+    The end heading [rad] is the yaw of the last pose's orientation (the vehicle's heading
+    there, also on a reverse segment, whose orientation points against the travel); None for
+    a path without poses or with a last orientation that is not finite.
+    """
     points = np.array([[p.pose.position.x, p.pose.position.y] for p in msg.poses],
                       dtype=np.float64).reshape(-1, 2)
     stamps = np.array([p.header.stamp.sec + p.header.stamp.nanosec * 1e-9 for p in msg.poses],
                       dtype=np.float64)
     timed = len(stamps) >= 2 and bool(np.all(np.diff(stamps) > 0.0))
-    return points, stamps if timed else None
+    heading = _yaw(msg.poses[-1].pose.orientation) if len(msg.poses) else None
+    return (points, stamps if timed else None,
+            heading if heading is not None and math.isfinite(heading) else None)
 
 
 def load_run(bag: str | Path, topics: Iterable[str] | None = None) -> RunSeries:
@@ -579,9 +592,9 @@ def load_run(bag: str | Path, topics: Iterable[str] | None = None) -> RunSeries:
     if 'clock' in decoded:
         clock = decoded['clock'].clock
         duration = clock.sec + clock.nanosec * 1e-9
-    path_points = path_times = None
+    path_points = path_times = path_end_heading = None
     if 'path' in decoded:
-        path_points, path_times = _path(decoded['path'])
+        path_points, path_times, path_end_heading = _path(decoded['path'])
     _check_values(path, {**series, **joints}, path_points)
     status = None
     if 'status' in decoded:
@@ -603,7 +616,7 @@ def load_run(bag: str | Path, topics: Iterable[str] | None = None) -> RunSeries:
         ranges={topic: _scalar_series(rows, range_receive[topic], _RANGE_COLUMNS)
                 for topic, rows in sorted(range_rows.items(), key=lambda i: _range_key(i[0]))},
         map_grid=_grid(decoded['map']) if 'map' in decoded else None,
-        task_final=_task_final(decoded))
+        task_final=_task_final(decoded), path_end_heading=path_end_heading)
 
 
 def _range_key(topic: str) -> tuple[str, int]:

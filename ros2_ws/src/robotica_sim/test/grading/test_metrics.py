@@ -5,8 +5,12 @@ Reference values come from the signals' definitions, not from the code: a consta
 0.1 m has RMS 0.1 m; A sin over whole periods has RMS A / sqrt(2); an exponential error
 e^(-t) enters a 2 % band at ln 50 s; the step response of a second-order system with damping
 zeta overshoots by exp(-zeta pi / sqrt(1 - zeta^2)); the integral of |2 sin t| over a period
-is 8; a 2R arm (l1 = 3 m, l2 = 1 m) bent by 90 deg at the elbow moves its tip by sqrt(2) m.
+is 8; a 2R arm (l1 = 3 m, l2 = 1 m) bent by 90 deg at the elbow moves its tip by sqrt(2) m;
+a parking run's final pose error is hypot(0.3, 0.4) = 0.5 m and 90 - 80 = 10 deg; its
+manoeuvres are counted by hand, or by grouping the signs of the moving samples.
 """
+from dataclasses import replace
+import itertools
 import math
 from pathlib import Path
 
@@ -17,7 +21,7 @@ from robotica_ctrl.mobile.path_shapes import circle, figure_eight, straight_line
 from robotica_sim.grading.metrics import (compute_metrics, contact_events, energy,
                                           MetricParams, METRICS, normal_fit, overshoot,
                                           path_errors, reading_error, rms, settling_time,
-                                          total_variation)
+                                          total_variation, travel_stretches)
 from robotica_sim.grading.rubric import check_metrics, parse_rubric
 from robotica_sim.grading.series import RunSeries, Series, TOPICS
 
@@ -249,7 +253,8 @@ def test_helpers_against_hand_values():
 
 
 @pytest.mark.parametrize('field, value', [('goal_tolerance', 0.0), ('search_window', -1.0),
-                                          ('settling_band', 1.0), ('sigma_bound', math.nan)])
+                                          ('settling_band', 1.0), ('sigma_bound', math.nan),
+                                          ('stop_speed', 0.0), ('stop_speed', True)])
 def test_params_are_checked(field, value):
     with pytest.raises(ValueError, match=field):
         MetricParams(**{field: value})
@@ -404,3 +409,100 @@ def test_collisions_are_absent_without_a_bumper_topic():
 def test_a_robot_touching_from_the_start_is_one_contact():
     assert contact_events([0.0, 0.02, 0.04], [1, 1, 1]) == (1, 0.04)
     assert contact_events([0.0], [0]) == (0, 0.0)
+
+
+# --- a parking run: the final pose against the last /path pose, and the manoeuvres ----------
+
+def speed_run(v, dt=0.1):
+    """Return a run whose truth has the longitudinal speeds ``v`` [m/s] every ``dt`` [s]."""
+    v = np.asarray(v, dtype=float)
+    t = np.arange(len(v)) * dt
+    return make_run(truth=pose_series(t, np.zeros(len(v)), np.zeros(len(v)), np.zeros(len(v)),
+                                      v=v))
+
+
+def parking_profile(stop=(0.0, 0.0, 0.0)):
+    """Forward, stop, reverse, stop, reverse, stop, forward: 3 manoeuvres (by hand)."""
+    return np.concatenate([np.full(20, 0.5), stop, np.full(15, -0.4), stop,
+                           np.full(10, -0.3), stop, np.full(5, 0.2)])
+
+
+def test_forward_reverse_reverse_forward_is_three_manoeuvres():
+    # The stop between the two reverse arcs (wheels re-oriented) starts no new manoeuvre.
+    metrics = compute_metrics(speed_run(parking_profile()))
+    assert metrics.values['manoeuvres'] == 3
+    checks = parse_rubric({'checks': {'manoeuvres': {'max': 4}}})
+    assert [c.passed for c in check_metrics(checks, metrics, None)] == [True]
+    (failed,) = check_metrics(parse_rubric({'checks': {'manoeuvres': {'max': 2}}}), metrics,
+                              None)
+    assert not failed.passed and failed.message == 'manoeuvres = 3, want <= 2'
+
+
+def test_noise_below_the_stop_speed_adds_no_manoeuvre():
+    # The three stops jitter around zero, both signs, |v| < stop_speed 0.01 m/s.
+    jitter = parking_profile((-0.005, 0.0099, -0.009))
+    assert compute_metrics(speed_run(jitter)).values['manoeuvres'] == 3
+    # With a stop speed below the jitter (a rubric's parameter), the jitter's signs count:
+    # + | - + - | - | - + - | - | - + - | + collapses to + - + - - - + - - - + - +, whose sign
+    # changes are 3 + 2 + 3 = 8: 9 stretches.
+    fine = parse_rubric({'parameters': {'stop_speed': 0.001},
+                         'checks': {'manoeuvres': {'max': 4}}})
+    assert fine.params.stop_speed == 0.001
+    assert compute_metrics(speed_run(jitter), fine.params).values['manoeuvres'] == 9
+
+
+def test_travel_stretches_against_grouping_the_moving_signs():
+    # Independent count: group the signs of the moving samples (itertools.groupby).
+    rng = np.random.default_rng(21)
+    for _ in range(200):
+        v = rng.choice([-0.3, -0.02, -0.005, 0.0, 0.004, 0.02, 0.5], size=rng.integers(0, 12))
+        signs = [u > 0 for u in v if abs(u) > 0.01]
+        assert travel_stretches(v, 0.01) == len([k for k, _ in itertools.groupby(signs)])
+
+
+def test_a_robot_that_never_moves_makes_no_manoeuvre():
+    assert compute_metrics(speed_run(np.zeros(30))).values['manoeuvres'] == 0
+    assert compute_metrics(speed_run(np.full(30, -0.01))).values['manoeuvres'] == 0  # <= stop
+    assert compute_metrics(speed_run([0.0, 0.3, 0.0])).values['manoeuvres'] == 1
+    assert travel_stretches([], 0.01) == 0 and travel_stretches([-1.0], 0.01) == 1
+
+
+def test_final_pose_error_against_the_last_path_pose():
+    # The path ends at (5, 2) facing +90 deg; the truth ends at (5.3, 2.4) heading 80 deg:
+    # hypot(0.3, 0.4) = 0.5 m and 10 deg.
+    t = np.linspace(0.0, 2.0, 21)
+    truth = pose_series(t, np.linspace(0.0, 5.3, 21), np.linspace(0.0, 2.4, 21),
+                        np.linspace(0.0, math.radians(80.0), 21))
+    run = replace(make_run(truth=truth, path=[[0.0, 0.0], [5.0, 0.0], [5.0, 2.0]]),
+                  path_end_heading=math.radians(90.0))
+    m = compute_metrics(run).values
+    assert m['final_position_error'] == pytest.approx(0.5, abs=1e-12)
+    assert m['final_heading_error'] == pytest.approx(math.radians(10.0), abs=1e-12)
+    checks = parse_rubric({'checks': {'final_position_error': {'max': 0.3}}})
+    assert [c.passed for c in check_metrics(checks, compute_metrics(run), None)] == [False]
+
+
+def test_final_heading_error_wraps_across_pi():
+    # Parked in reverse: the last pose's orientation is 180 deg (against the travel), the
+    # truth ends at -179 deg, 1 deg away; the truth ends on a one-pose path's only pose.
+    truth = pose_series([0.0, 1.0], [1.0, 2.0], [1.0, 1.0], [0.0, math.radians(-179.0)])
+    run = replace(make_run(truth=truth, path=[[2.0, 1.0]]), path_end_heading=math.pi)
+    m = compute_metrics(run).values
+    assert m['final_heading_error'] == pytest.approx(math.radians(1.0), abs=1e-12)
+    assert m['final_position_error'] == 0.0
+
+
+def test_final_pose_errors_absent_with_the_reason():
+    t = np.linspace(0.0, 1.0, 3)
+    truth = pose_series(t, t, 0 * t, 0 * t)
+    absent = compute_metrics(make_run(truth=truth)).absent
+    assert absent['final_position_error'] == absent['final_heading_error'] == (
+        'needs topic /path, which the bag lacks')
+    no_truth = compute_metrics(replace(make_run(path=STRAIGHT), path_end_heading=0.0)).absent
+    assert no_truth['final_position_error'] == no_truth['manoeuvres'] == (
+        'needs topic /ground_truth/odom, which the bag lacks')
+    unoriented = compute_metrics(make_run(truth=truth, path=STRAIGHT))   # heading None
+    assert unoriented.values['final_position_error'] == pytest.approx(9.0)
+    assert 'finite orientation' in unoriented.absent['final_heading_error']
+    empty = compute_metrics(make_run(truth=truth, path=np.zeros((0, 2)))).absent
+    assert empty['final_position_error'] == 'needs a /path with poses; the last /path has none'

@@ -163,6 +163,7 @@ def test_mobile_run_columns_match_what_was_written(tmp_path):
         pytest.approx(np.full(N, 0.01)), pytest.approx(np.full(N, 0.02)),
         pytest.approx(np.full(N, 0.03)))
     assert run.path.tolist() == [[0.0, 0.0], [1.0, 0.0], [2.0, 0.0], [3.0, 0.0]]
+    assert run.path_end_heading == 0.0       # the yaw of the last pose's orientation
     assert run.path_times is None            # every pose stamped 0: not a trajectory
     assert run.cmd['w'] == pytest.approx(-truth.t) and run.cmd.t == pytest.approx(truth.t)
     assert set(run.cmd.columns) == {'v', 'w'}
@@ -177,6 +178,36 @@ def test_mobile_run_columns_match_what_was_written(tmp_path):
     assert run.joint_states is None and run.controller is None and run.torques is None
     for series in (truth, run.odom, run.cmd, run.tracking_error, run.imu, run.gps):
         assert all(v.dtype == np.float64 for v in (series.t, *series.columns.values()))
+
+
+def _parking_path(types, postures):
+    """Return a nav_msgs/Path of postures (x [m], y [m], heading [rad]), stamped 0."""
+    pose_stamped, pose = types['geometry_msgs/msg/PoseStamped'], types['geometry_msgs/msg/Pose']
+    return types['nav_msgs/msg/Path'](header=_header(types, 0.0), poses=[
+        pose_stamped(header=_header(types, 0.0), pose=pose(
+            position=types['geometry_msgs/msg/Point'](x=x, y=y, z=0.0),
+            orientation=_quaternion(types, heading))) for x, y, heading in postures])
+
+
+def test_the_last_paths_end_heading_is_read_back(tmp_path):
+    # Two /path messages: the first a plain line, the last a parking plan whose reverse
+    # segment ends facing 2.5 rad (against the travel); only the last one counts.
+    types = _types(jazzy_typestore())
+    topics = mobile_topics(types)
+    line = _parking_path(types, [(0.0, 0.0, 0.0), (9.0, 0.0, 0.0)])
+    plan = _parking_path(types, [(6.0, 1.0, 0.0), (5.0, 0.6, 0.3), (4.0, 0.5, 2.5)])
+    topics['/path'] = ('nav_msgs/msg/Path', [(0.0, line), (0.2, plan)])
+    run = load_run(write_bag(tmp_path / 'bag', topics))
+    assert run.path.tolist() == [[6.0, 1.0], [5.0, 0.6], [4.0, 0.5]]
+    assert run.path_end_heading == pytest.approx(2.5, abs=1e-12)
+    # The truth ends at (4, 0.5) heading -3.1 rad: 0 m, and |wrap(-3.1 - 2.5)| = 2 pi - 5.6.
+    metrics = compute_metrics(run).values
+    assert metrics['final_position_error'] == pytest.approx(0.0, abs=1e-12)
+    assert metrics['final_heading_error'] == pytest.approx(2 * math.pi - 5.6, abs=1e-9)
+    assert metrics['manoeuvres'] == 1                  # v = 1 m/s throughout
+    topics['/path'] = ('nav_msgs/msg/Path', [(0.0, _parking_path(types, []))])
+    empty = load_run(write_bag(tmp_path / 'empty', topics))
+    assert empty.path.shape == (0, 2) and empty.path_end_heading is None
 
 
 def test_topic_selection_and_errors(tmp_path):
@@ -408,7 +439,7 @@ def test_range_topics_can_be_selected(tmp_path):
 def test_run_world_from_the_scenario_or_map():
     grid = OccupancyGrid(np.zeros((2, 2), np.int8), 0.5)
     base = RunSeries(Path('runs/x/bag'), None, 0.0, {}, *[None] * 13)
-    assert run_world(base) is None
+    assert run_world(base) is None and base.path_end_heading is None
     assert run_world(replace(base, map_grid=grid)).world.grid is grid
     walls = run_world(replace(base, scenario={'world': {'walls': [[0, 0, 1, 0]]}}))
     assert walls.world.walls.tolist() == [[0.0, 0.0, 1.0, 0.0]] and walls.note == ''
