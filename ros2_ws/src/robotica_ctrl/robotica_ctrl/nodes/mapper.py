@@ -12,8 +12,9 @@ cells of its cone with Elfes' model (half-angle ``field_of_view`` / 2, ``min_ran
 ``max_range`` of the message; a reading >= ``max_range`` or +inf is no echo, NaN and -inf are
 skipped; the message's ``frame_id``, the emulator's ``sonar_<i>_link``, is not read: the topic
 names the mount). Both are log-odds updates, clamped. The map (the slides' −1…+1 evidence as
-0…100 %, −1 where nothing was observed) goes out on ``map`` (nav_msgs/OccupancyGrid, transient local, in
-``frame_id``) every ``publish_period`` seconds of the readings' time: the planner reads it.
+0…100 %, −1 where nothing was observed) goes out on ``map`` (nav_msgs/OccupancyGrid, transient
+local, in ``frame_id``) every ``publish_period`` seconds of the readings' time: the planner
+reads it.
 
 The sources: the laser unless ``laser.enabled`` is false (the default maps from it, as before
 the sonar came), the sonar when ``sonar.mounts`` is given (one topic per triple). A Range whose
