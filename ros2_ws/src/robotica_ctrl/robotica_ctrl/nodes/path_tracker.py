@@ -2,13 +2,16 @@
 Path tracker node: follows a ``nav_msgs/Path`` with a law of book ch. 9 chosen by ``law``.
 
 Laws (:mod:`robotica_ctrl.mobile.tracking_laws`): ``pure_pursuit`` (§9.3.1),
-``adaptive_pure_pursuit`` (look-ahead by speed, curvature or error), ``quintic`` (§9.3.2),
-``trajectory_tracking`` (Canudas de Wit, §9.4.2: linear, scheduled or nonlinear), ``frenet``
-(§9.4.3: linear or nonlinear), ``gpc`` (§9.5) and ``open_loop`` (a profile of (v, ω) played
-against the pose's time stamp without feedback, the book's Simulink examples, Ej. 4.8 and
-4.9); each reads its gains from the parameters ``<law>.<gain>`` (descriptions, units and
-ranges with ``ros2 param describe``), which can be changed at run time (an invalid value is
-refused with the reason).
+``adaptive_pure_pursuit`` (look-ahead by speed, curvature or error), ``reversing_pure_pursuit``
+(pure pursuit forward and in reverse: the path's poses are the vehicle's postures, the yaw of
+each orientation its heading; a step against the heading is driven in reverse, v < 0, and the
+vehicle stops at each cusp; a path whose poses face along it is driven forward), ``quintic``
+(§9.3.2), ``trajectory_tracking`` (Canudas de Wit, §9.4.2: linear, scheduled or nonlinear),
+``frenet`` (§9.4.3: linear or nonlinear), ``gpc`` (§9.5) and ``open_loop`` (a profile of (v, ω)
+played against the pose's time stamp without feedback, the book's Simulink examples, Ej. 4.8 and
+4.9); each reads its gains from the parameters ``<law>.<gain>`` (descriptions, units and ranges
+with ``ros2 param describe``), which can be changed at run time (an invalid value is refused
+with the reason).
 
 Topics: the pose in, from ``odom`` (nav_msgs/Odometry, the estimate) or, with ``pose_source``
 = ``ground_truth``, from ``ground_truth/odom`` (the simulator's truth); ``~/path``
@@ -23,7 +26,8 @@ stamped with the pose it answers, as Jazzy's diff_drive_controller takes it) and
 none from a law that follows no path, whose errors are NaN: ``open_loop``).
 With ``command_type`` = ``steering`` (tricycle, bicycle, Ackermann) the command goes out on
 ``vehicle_command`` (robotica_msgs/VehicleCommand) instead: the law's speed v and the steering
-angle of its curvature, α = atan(l ω / v) (book (4.119), (4.121)), l = ``wheelbase``.
+angle of its curvature, α = atan(l ω / v) (book (4.119), (4.121)), l = ``wheelbase``, which
+keeps its sign in reverse (v < 0: the bicycle's θ' = v tan α / l is the law's ω).
 
 With ``control_rate`` = 0 the law runs once per pose message (what a lockstep simulation needs:
 every step is answered exactly once); with ``control_rate`` > 0 it runs on a timer from the
@@ -45,7 +49,7 @@ from robotica_ctrl.mobile.tracker_base import TrackingLaw
 from robotica_ctrl.mobile.tracking_laws import (check_gains, law_for_path, LAW_PARAMETERS,
                                                 steering_angle, TRACKER_PARAMETERS)
 from robotica_kin.parameter_specs import check_parameters, ParameterError
-from robotica_kin.ros.convert import path_points, pose2d_from_odometry, stamp_to_seconds
+from robotica_kin.ros.convert import path_postures, pose2d_from_odometry, stamp_to_seconds
 from robotica_kin.ros.entry_point import run_node
 from robotica_kin.ros.guarded import GuardedNode
 from robotica_kin.ros.parameters import declare, declare_specs
@@ -142,9 +146,10 @@ class PathTrackerNode(GuardedNode):
             self.get_logger().warn('an empty path on ~/path: no path to follow, stopping')
             return
         times = [stamp_to_seconds(p.header.stamp) for p in msg.poses]
+        postures = path_postures(msg)   # the headings: reversing pure pursuit's directions
         try:
-            law, path, timed = law_for_path(self._law_name, path_points(msg), self._gains,
-                                            times)
+            law, path, timed = law_for_path(self._law_name, postures[:, :2], self._gains,
+                                            times, postures[:, 2])
         except ValueError as err:   # one bad message must not stop a run whose path came once
             self.get_logger().error(f'path refused: {err}; '
                                     + ('keeping the previous path' if self._law is not None

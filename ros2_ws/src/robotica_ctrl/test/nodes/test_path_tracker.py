@@ -2,7 +2,9 @@
 Node tests of path_tracker: commands from real messages, safe stops, refused gains.
 
 Reference: a robot at (0, 0.5) heading +x beside the straight path y = 0 is left of the path,
-so its cross-track error is +0.5 m and pure pursuit turns it right (negative yaw rate).
+so its cross-track error is +0.5 m and pure pursuit turns it right (negative yaw rate). Reversing
+pure pursuit: the book's curvature (9.5) γ = 2 y / L² of the goal point (x, y) seen from the
+vehicle turned round, worked in the test.
 """
 import math
 
@@ -231,3 +233,77 @@ def test_unknown_pose_source_is_refused(start_node, read_output):
     proc = start_node('robotica_ctrl', 'path_tracker', '-p', 'pose_source:=bogus')
     assert proc.wait(timeout=30) == 2
     assert "pose_source must be one of ('odom', 'ground_truth')" in read_output(proc)
+
+
+def _there_and_back():
+    """Return a path of postures 1 m forward along x and back, heading 0 throughout, in odom."""
+    x = np.concatenate([np.linspace(0.0, 1.0, 11), np.linspace(0.9, 0.0, 10)])
+    return path_message(np.column_stack([x, np.zeros_like(x), np.zeros_like(x)]), 'odom')
+
+
+def _reversing_tracker(start_node, ros_node, spin, *params):
+    node, executor = ros_node
+    proc = start_node('robotica_ctrl', 'path_tracker', '-r', '/path_tracker/path:=/path',
+                      '-p', 'law:=reversing_pure_pursuit', *params)
+    odom = node.create_publisher(Odometry, 'odom', QOS)
+    path = node.create_publisher(Path, '/path', LATCHED)
+    assert spin(executor, lambda: odom.get_subscription_count() > 0 and
+                path.get_subscription_count() > 0)
+    path.publish(_there_and_back())
+    return proc, node, executor, odom
+
+
+def _drive_to_the_cusp(executor, odom, publish, speeds):
+    """Feed poses on the forward piece, then the cusp; return the speeds from the cusp on."""
+    assert publish(executor, odom, _odom(0.0, 0.0, 0.0), lambda: speeds() and speeds()[-1] > 0)
+    n = len(speeds())
+    assert publish(executor, odom, _odom(0.5, 0.0, 0.0), lambda: len(speeds()) > n)
+    assert speeds()[-1] == pytest.approx(0.5)   # cruise: 0.5 m from the end = approach_distance
+    n = len(speeds())
+    assert publish(executor, odom, _odom(1.0, 0.0, 0.0), lambda: speeds()[-1] < 0.0)
+    return speeds()[n:]
+
+
+def test_reversing_pure_pursuit_backs_up_after_the_cusp(start_node, ros_node, spin, publish):
+    # Forward poses are answered with v > 0; the pose at the cusp ends the forward piece: a
+    # stop (0, 0), then the reverse piece from the same pose: v = -0.5 m/s, straight back.
+    proc, node, executor, odom = _reversing_tracker(start_node, ros_node, spin)
+    cmds, errors = [], []
+    node.create_subscription(Twist, 'cmd_vel', cmds.append, QOS)
+    node.create_subscription(TrackingError, '/path_tracker/tracking_error', errors.append, QOS)
+    assert spin(executor, lambda: node.count_publishers('cmd_vel') > 0)
+    after = _drive_to_the_cusp(executor, odom, publish, lambda: [c.linear.x for c in cmds])
+    turn = next(k for k, v in enumerate(after) if v <= 0.0)   # answers to 0.5 m may come first
+    assert after[turn] == 0.0 and after[turn + 1] == pytest.approx(-0.5)
+    assert cmds[-1].angular.z == pytest.approx(0.0, abs=1e-12)
+    # Left of the path (y = +0.1) while backing, facing +x: the error is left of the heading.
+    n = len(errors)
+    assert publish(executor, odom, _odom(0.7, 0.1, 0.0), lambda: len(errors) > n and
+                   errors[-1].cross_track != 0.0)
+    assert errors[-1].cross_track == pytest.approx(0.1, abs=1e-9)
+    assert errors[-1].heading == pytest.approx(0.0, abs=1e-9)
+    assert cmds[-1].linear.x == pytest.approx(-0.5) and proc.poll() is None
+
+
+def test_reversing_with_steering_commands_a_negative_speed(start_node, ros_node, spin, publish):
+    # command_type steering on a car of l = 1.5 m: on the reverse piece the speed is < 0. At
+    # (0.7, 0.1), heading 0, the turned vehicle (heading π) is 0.3 m along the reverse piece;
+    # its goal point L = 0.5 m on is (0.2, 0) [odom], at (x, y) = (0.5, 0.1) in its frame:
+    # γ = 2 (0.1) / (0.5² + 0.1²) = 0.769 1/m, ω = 0.5 γ, and the car's steering
+    # α = atan(l ω / v) with v = -0.5 m/s: -0.857 rad (steer right, the nose swings left).
+    proc, node, executor, odom = _reversing_tracker(start_node, ros_node, spin,
+                                                    '-p', 'command_type:=steering',
+                                                    '-p', 'wheelbase:=1.5')
+    commands = []
+    node.create_subscription(VehicleCommand, 'vehicle_command', commands.append, QOS)
+    assert spin(executor, lambda: node.count_publishers('vehicle_command') > 0)
+    after = _drive_to_the_cusp(executor, odom, publish, lambda: [c.speed for c in commands])
+    assert after[-1] == pytest.approx(-0.5) and 0.0 in after
+    n = len(commands)
+    assert publish(executor, odom, _odom(0.7, 0.1, 0.0), lambda: len(commands) > n and
+                   commands[-1].steering_angle != 0.0)
+    gamma = 2.0 * 0.1 / (0.5 ** 2 + 0.1 ** 2)
+    assert commands[-1].speed == pytest.approx(-0.5)
+    assert commands[-1].steering_angle == pytest.approx(math.atan(1.5 * 0.5 * gamma / -0.5),
+                                                        abs=1e-9)
+    assert commands[-1].steering_angle == pytest.approx(-0.857, abs=1e-3)
