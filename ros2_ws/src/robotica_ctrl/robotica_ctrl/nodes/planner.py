@@ -16,6 +16,14 @@ so that the tracker stops; ``~/status`` (robotica_msgs/PlanStatus, transient loc
 the reason, cost, expansions, whether the search's bound was hit, the time it took) and
 ``~/markers`` (visualization_msgs/MarkerArray: the path, the cells A* expanded, start and goal).
 Every search is bounded (``max_expansions``, ``max_seconds``): a plan never hangs the node.
+
+With ``method`` = ``parking`` it runs the course's parallel parking instead
+(:mod:`robotica_ctrl.nodes.parking_mode`): a straight pass from the pose (at the first pose with
+``parking.autostart``, else when the ``park`` service, std_srvs/Trigger, is called), the space
+detected from a side range sensor (``side_range``, sensor_msgs/Range) and the manoeuvres into it
+published on ``plan`` as postures whose orientations are the vehicle's headings (a tracker that
+reverses follows them: ``reversing_pure_pursuit``); the vehicle, the sensor's mount and the
+detection thresholds are the ``parking.*`` parameters.
 """
 import time
 from typing import Any
@@ -24,7 +32,8 @@ from geometry_msgs.msg import Point, Pose, PoseStamped
 from nav_msgs.msg import OccupancyGrid as OccupancyGridMsg, Odometry, Path
 import numpy as np
 from rclpy.experimental import EventsExecutor
-from robotica_ctrl.planning.plan_result import PlanResult
+from robotica_ctrl.nodes.parking_mode import ParkingMode
+from robotica_ctrl.planning.plan_result import PlanResult, SearchBudget
 from robotica_ctrl.planning.planners import plan_path, planner_options, PLANNER_PARAMETERS
 from robotica_kin.bounds import bounded_array, MAX_POSITION
 from robotica_kin.ros.convert import (path_message, pose2d_from_odometry, quaternion_to_yaw,
@@ -75,6 +84,12 @@ class PlannerNode(GuardedNode):
         self._plan_pub = self.create_publisher(Path, 'plan', LATCHED_QOS)
         self._status_pub = self.create_publisher(PlanStatus, '~/status', LATCHED_QOS)
         self._markers_pub = self.create_publisher(MarkerArray, '~/markers', LATCHED_QOS)
+        self._parking: ParkingMode | None = None
+        if self._options['method'] == 'parking':
+            self._parking = ParkingMode(
+                self, self._frame, SearchBudget(int(self._options['max_expansions']),
+                                                float(self._options['max_seconds'])),
+                lambda: self._world, self._publish)
         if self._world is None:
             self.create_subscription(OccupancyGridMsg, '/map', self._on_map, LATCHED_QOS)
         self.create_subscription(Odometry, 'odom', self._on_odom, STREAM_SUB_QOS)
@@ -84,7 +99,8 @@ class PlannerNode(GuardedNode):
         self.get_logger().info(
             f"planner {self._options['method']!r} on "
             + (f'the world of {path}' if path else '/map') + ', goal '
-            + ('from goal_pose' if self._goal is None else str(self._goal.tolist())))
+            + ('of the parking search' if self._parking is not None else
+               'from goal_pose' if self._goal is None else str(self._goal.tolist())))
         self._plan()
 
     @staticmethod
@@ -102,18 +118,24 @@ class PlannerNode(GuardedNode):
         self.get_logger().info('new map: '
                                f'{msg.info.width} x {msg.info.height} cells of '
                                f'{msg.info.resolution:g} m')
-        if self._path is None or self._blocked(self._path):
+        if self._parking is None and (self._path is None or self._blocked(self._path)):
             self._plan()
 
     def _on_odom(self, msg: Odometry) -> None:
         pose = pose2d_from_odometry(msg)
         self._start = self._point(pose[:2], 'pose')
+        if self._parking is not None:
+            self._parking.on_odom(msg)
 
     def _on_goal(self, msg: PoseStamped) -> None:
         if msg.header.frame_id and msg.header.frame_id != self._frame:
             raise ValueError(f'goal_pose in frame {msg.header.frame_id!r}, not {self._frame!r}')
         goal = self._point([msg.pose.position.x, msg.pose.position.y], 'goal_pose')
         quaternion_to_yaw(msg.pose.orientation)   # a malformed quaternion is refused here
+        if self._parking is not None:
+            self.get_logger().warn('a goal on goal_pose is not used in the parking mode: call '
+                                   'the park service', throttle_duration_sec=5.0)
+            return
         self._goal = goal
         self.get_logger().info(f'new goal ({goal[0]:.3f}, {goal[1]:.3f}) m')
         self._plan()
@@ -127,19 +149,15 @@ class PlannerNode(GuardedNode):
 
     # -- planning -------------------------------------------------------------------------
     def _plan(self) -> None:
-        if self._world is None or self._goal is None:
+        if self._world is None or self._goal is None or self._parking is not None:
             return
         began = time.monotonic()
         result = plan_path(self._world, self._start, self._goal, self._options, time.monotonic)
         elapsed = time.monotonic() - began
         self._path = None if result.path is None else result.path[:, :2]
-        stamp = self.get_clock().now().to_msg()
-        path = path_message(result.path[:, :2] if result.path is not None else np.zeros((0, 2)),
-                            self._frame)   # (x, y); a curved path's θ is its tangent anyway
-        path.header.stamp = stamp
-        self._plan_pub.publish(path)
-        self._status_pub.publish(self._status(result, elapsed, stamp))
-        self._markers_pub.publish(self._markers(result, stamp))
+        self._publish(result, path_message(
+            result.path[:, :2] if result.path is not None else np.zeros((0, 2)),
+            self._frame), elapsed, [])   # (x, y); a curved path's θ is its tangent anyway
         if result.found:
             self.get_logger().info(f'path of {result.cost:.2f} m ({len(result.path)} poses), '
                                    f'{result.expansions} expansions in {elapsed:.3f} s')
@@ -147,22 +165,36 @@ class PlannerNode(GuardedNode):
             self.get_logger().error(f'no path: {result.reason} (after {result.expansions} '
                                     f'expansions, {elapsed:.3f} s); the tracker stops')
 
+    def _publish(self, result: PlanResult, path: Path | None, elapsed: float,
+                 extra: list[Marker]) -> None:
+        """Publish ``path`` (unless None) on ``plan``, the status and the markers of ``result``."""
+        stamp = self.get_clock().now().to_msg()
+        if path is not None:
+            path.header.stamp = stamp
+            self._plan_pub.publish(path)
+        self._status_pub.publish(self._status(result, elapsed, stamp))
+        markers = self._markers(result, stamp)
+        for marker in extra:
+            marker.header.frame_id, marker.header.stamp = self._frame, stamp
+        markers.markers.extend(extra)
+        self._markers_pub.publish(markers)
+
     def _status(self, result: PlanResult, elapsed: float, stamp: Any) -> PlanStatus:
-        assert self._goal is not None
+        goal = result.details.get('goal') if self._parking is not None else self._goal
         msg = PlanStatus(method=str(self._options['method']), found=result.found,
                          reason=result.reason, cost=result.cost if result.found else 0.0,
                          points=0 if result.path is None else len(result.path),
                          expansions=int(result.expansions),
                          budget_exhausted='budget was exhausted' in result.reason,
                          planning_time=elapsed, start=_pose(*self._start),
-                         goal=_pose(*self._goal))
+                         goal=Pose() if goal is None else _pose(*goal))
         msg.header.stamp = stamp
         msg.header.frame_id = self._frame
         return msg
 
     def _markers(self, result: PlanResult, stamp: Any) -> MarkerArray:
         """Return the plan's markers: the path, the expanded cells, the start and the goal."""
-        markers = [Marker(ns=ns, action=Marker.DELETEALL) for ns in ('plan',)]
+        markers = [Marker(ns=ns, action=Marker.DELETEALL) for ns in ('plan', 'parking_space')]
         line = Marker(ns='plan', id=0, type=Marker.LINE_STRIP, action=Marker.ADD)
         line.scale.x = 0.05
         line.color = ColorRGBA(r=0.1, g=0.8, b=0.1, a=1.0)
@@ -180,11 +212,13 @@ class PlannerNode(GuardedNode):
             dots.points = [Point(x=float(x), y=float(y)) for x, y in centres]
             markers.append(dots)
         for k, (point, color) in enumerate(((self._start, ColorRGBA(g=1.0, a=1.0)),
-                                            (self._goal, ColorRGBA(r=1.0, a=1.0)))):
+                                            (self._goal if self._parking is None
+                                             else result.details.get('goal'),
+                                             ColorRGBA(r=1.0, a=1.0)))):
             if point is None:
                 continue
             sphere = Marker(ns='plan', id=2 + k, type=Marker.SPHERE, action=Marker.ADD,
-                            pose=_pose(*point), color=color)
+                            pose=_pose(*point[:2]), color=color)
             sphere.scale.x = sphere.scale.y = sphere.scale.z = 0.2
             markers.append(sphere)
         for marker in markers:

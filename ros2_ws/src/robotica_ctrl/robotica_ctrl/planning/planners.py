@@ -48,7 +48,9 @@ __all__ = ['PLANNER_METHODS', 'PLANNER_PARAMETERS', 'plan_path', 'planner_option
 
 PLANNER_METHODS = ('astar', 'visibility_graph', 'voronoi', 'potential', 'vff')
 PLANNER_PARAMETERS: dict[str, ParameterSpec] = {
-    'method': ParameterSpec('astar', 'The planner (book ch. 12)', choices=PLANNER_METHODS),
+    'method': ParameterSpec('astar', "The planner (book ch. 12); parking: the course's "
+                            "parallel parking (the planner node's parking mode)",
+                            choices=(*PLANNER_METHODS, 'parking')),
     'robot_radius': ParameterSpec(0.3, 'Radius of the robot [m]: obstacles are grown by it '
                                   '(§12.4.4)', 0.0, 100.0),
     'neighbours': ParameterSpec(8, 'A*: 8 or 16 neighbours of a cell (§12.6.2)', 8, 16),
@@ -115,6 +117,9 @@ def plan_path(world: World, start: ArrayLike, goal: ArrayLike,
     o = planner_options(options or {})
     budget = SearchBudget(int(o['max_expansions']), float(o['max_seconds']))
     method, radius = o['method'], o['robot_radius']
+    if method == 'parking':
+        return PlanResult.none('parking plans into a space found on a pass, not to a goal: '
+                               "the planner node's parking mode (planning.parking)")
     if method in ('visibility_graph', 'voronoi') and world.grid is not None:
         return PlanResult.none(f'{method} plans among walls, polygons and circles: this world '
                                'is a grid (use astar)')
