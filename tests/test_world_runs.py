@@ -123,3 +123,28 @@ def test_the_voronoi_path_runs_down_the_corridors_middle(tmp_path, ros_domain):
     leg = [(p.pose.position.x, p.pose.position.y) for p in got['/path'][-1].poses
            if 0.5 < p.pose.position.x < 4.5]
     assert leg and max(abs(y) for _, y in leg) < 0.05
+
+
+def test_a_car_finds_a_space_and_parks_in_it(tmp_path, ros_domain):
+    # street_parking (issue 21): the space between the cars at x = 6.5 and 13.7 m (their street
+    # sides on y = 2.2 m, the curb on y = 0) is found by the side sonar on the pass, and the car
+    # (a1 3.6, b1 0.9, c1 1.7 m about P_f) ends with its whole body inside it, parallel to the
+    # street, having reversed, without contact: checked here from the recorded truth.
+    bag = run(tmp_path, 'street_parking')
+    code, report = grade(bag, '--rubric', 'street_parking')
+    assert code == 0, report
+    got = messages(bag, '/ground_truth/odom', '/planner/status')
+    status = got['/planner/status'][-1]
+    assert status.found and status.method == 'parking', status.reason
+    truth = got['/ground_truth/odom']
+    x, y = truth[-1].pose.pose.position.x, truth[-1].pose.pose.position.y
+    q = truth[-1].pose.pose.orientation
+    heading = math.atan2(2 * (q.w * q.z + q.x * q.y), 1 - 2 * (q.y ** 2 + q.z ** 2))
+    assert abs(heading) < 0.1
+    c, s = math.cos(heading), math.sin(heading)
+    corners = [(x + c * u - s * v, y + s * u + c * v)
+               for u in (-0.9, 3.6) for v in (-0.85, 0.85)]
+    assert all(6.5 < cx < 13.7 and 0.0 < cy < 2.2 for cx, cy in corners), corners
+    speeds = [m.twist.twist.linear.x for m in truth]
+    assert min(speeds) < -0.1 and max(speeds) > 0.1              # forward and in reverse
+    assert 2 <= metric(report, 'manoeuvres') <= 5

@@ -41,6 +41,8 @@ __all__ = ['ParkingMode']
 
 POSES_KEPT = 500
 """Poses kept to place the readings (10 s of 50 Hz odometry)."""
+PENDING_KEPT = 50
+"""Readings kept while their pose has not arrived (newer than every pose)."""
 
 
 class ParkingMode:
@@ -67,6 +69,7 @@ class ParkingMode:
                                   'reading and the pose it is placed at [s]', low=0.0,
                                   high=10.0, read_only=True)
         self._history = PoseHistory(POSES_KEPT)
+        self._pending: list[Range] = []
         self._pose: Optional[NDArray[np.float64]] = None
         self._state = 'idle'   # idle, searching, planned
         self._progress = node.create_publisher(Header, '~/progress', STREAM_PUB_QOS)
@@ -91,6 +94,9 @@ class ParkingMode:
         pose = pose2d_from_odometry(msg)
         self._history.add(stamp, pose)
         self._pose = pose
+        pending, self._pending = self._pending, []
+        for reading in pending:   # the readings that came before their pose: now, or kept
+            self._on_range(reading)
         if self._autostart and self._state == 'idle':
             self._autostart = False
             self._start()
@@ -114,6 +120,10 @@ class ParkingMode:
         if self._state != 'searching':
             return
         t = stamp_to_seconds(msg.header.stamp)
+        if t > self._history.latest:   # its pose may still be on its way
+            self._pending.append(msg)
+            del self._pending[:-PENDING_KEPT]
+            return
         pose = self._history.nearest(t, self._tolerance)
         if pose is None:
             self._node.get_logger().warn(f'no pose within {self._tolerance} s of the side '

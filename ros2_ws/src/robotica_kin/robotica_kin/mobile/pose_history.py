@@ -6,6 +6,7 @@ simulator's sensor emulators sample on the truth's stamps, so the nearest kept p
 there, and a pose farther than a tolerance from the reading is no pose for it.
 """
 from collections import deque
+import math
 from typing import Optional
 
 import numpy as np
@@ -22,6 +23,8 @@ class PoseHistory:
     >>> history.add(0.0, (0.0, 0.0, 0.0)); history.add(0.1, (0.1, 0.0, 0.0))
     >>> history.nearest(0.09, tolerance=0.02).tolist(), history.nearest(0.5, 0.02)
     ([0.1, 0.0, 0.0], None)
+    >>> history.latest
+    0.1
     """
 
     def __init__(self, size: int = 200) -> None:
@@ -32,6 +35,11 @@ class PoseHistory:
     def __len__(self) -> int:
         """Return how many poses are kept."""
         return len(self._poses)
+
+    @property
+    def latest(self) -> float:
+        """Return the stamp [s] of the newest pose (-inf when there is none)."""
+        return self._poses[-1][0] if self._poses else -math.inf
 
     def add(self, stamp: float, pose: ArrayLike) -> None:
         """Keep ``pose`` (x, y, θ) of time ``stamp`` [s]; ValueError if it is not finite."""

@@ -29,6 +29,7 @@ from robotica_ctrl.mobile import path_shapes
 from robotica_ctrl.mobile.reactive_navigation import NAVIGATOR_PARAMETERS, navigator_params
 from robotica_ctrl.mobile.tracking_laws import (check_gains, law_for_path, LAW_PARAMETERS,
                                                 TRACKER_PARAMETERS)
+from robotica_ctrl.planning.parking.parking_search import PARKING_PARAMETERS, parking_search
 from robotica_ctrl.planning.planners import planner_options, PLANNER_PARAMETERS
 from robotica_ctrl.trajectory.joint_reference import reference_samples
 from robotica_kin.dh import as_dyn_model, DHModel
@@ -89,6 +90,8 @@ LAW_TOPICS = {**{law: ('/joint_controller/adaptation',)
                  for law in TASK_LAWS if law not in FORCE_LAWS}}
 CONTACT_WRENCH_TOPIC = '/contact_wrench'
 PLANNER_TOPICS = ('/planner/status', '/planner/markers')
+PLANNER_PROGRESS_TOPIC = '/planner/progress'
+"""The parking planner's progress, which the lockstep simulator follows."""
 """The planner's outcome and its markers, recorded in a run with a planner: section."""
 FT_SENSOR_TOPICS = ('/ft_sensor/wrench', '/ft_sensor/gauges')
 """The telemetry of a joint controller's law (robotica_ctrl.nodes.law_telemetry), recorded."""
@@ -268,6 +271,8 @@ def followed_topics(scenario: Scenario) -> tuple[str, ...]:
                                            ('compass', '/compass/heading'))
                if getattr(scenario.sensors, sensor).enabled]
     topics += [mounted[0][0] for mounted in _range_topics(scenario).values() if mounted]
+    if scenario.planner.method == 'parking':   # no driving on while it plans
+        topics.append(PLANNER_PROGRESS_TOPIC)
     return tuple(topics)
 
 
@@ -913,22 +918,79 @@ def _planner(scenario: Scenario) -> NodeSpec:
 
     It plans in the scenario's world from the robot's initial pose to ``planner.goal`` (and
     again from the true pose when the goal changes), publishing on ``/path``: the tracker follows
-    it and the grading measures the cross-track error against it.
+    it and the grading measures the cross-track error against it. Method ``parking`` takes no
+    goal: it starts its pass at the first true pose and reads the side sonar ``planner.sonar``
+    (its mount is ``parking.sensor_pose``); the vehicle's h1 and θ_dmax are the robot's
+    wheelbase and steering limit, its a1, b1 and c1 the bounds of ``robot.footprint_polygon``,
+    unless the section gives them.
     """
     where = scenario.source or scenario.name
     spec = scenario.planner
-    goal = _numbers(list(spec.goal), f'{where}: planner.goal')
-    if len(goal) != 2:
-        raise ScenarioError(f'{where}: planner.goal must be (x, y) [m], got {list(spec.goal)}')
-    options = {'method': spec.method, **_dotted('', spec.options, where, 'planner.',
-                                                PLANNER_PARAMETERS)}
-    _node_check(where, 'planner', {name: f'planner.{name}' for name in options},
-                lambda: planner_options(options))
+    parking = spec.method == 'parking'
+    specs = {**PLANNER_PARAMETERS,
+             **{f'parking.{k}': v for k, v in PARKING_PARAMETERS.items()}}
+    options = {'method': spec.method, **_dotted('', spec.options, where, 'planner.', specs)}
+    remappings = {'plan': '/path', 'odom': '/ground_truth/odom'}
+    if parking:
+        if spec.goal:
+            raise ScenarioError(f'{where}: planner.goal: the parking method parks in the space '
+                                'its pass finds; give no goal')
+        options = {**_parking_vehicle(scenario), 'parking.autostart': True, **options}
+        topic, mount = _side_sonar(scenario)
+        options['parking.sensor_pose'] = list(mount)
+        remappings['side_range'] = topic
+        goal = [0.0]
+    else:
+        if spec.sonar >= 0:
+            raise ScenarioError(f'{where}: planner.sonar is for the parking method only')
+        goal = _numbers(list(spec.goal), f'{where}: planner.goal')
+        if len(goal) != 2:
+            raise ScenarioError(f'{where}: planner.goal must be (x, y) [m], got '
+                                f'{list(spec.goal)}')
+    keys = {name: f'planner.{name}' for name in options}
+    _node_check(where, 'planner', {name: f'planner.{name}' for name in PLANNER_PARAMETERS},
+                lambda: planner_options({k: v for k, v in options.items()
+                                         if k in PLANNER_PARAMETERS}))
+    if parking:
+        _node_check(where, 'planner', {k.removeprefix('parking.'): v for k, v in keys.items()},
+                    lambda: parking_search({k.removeprefix('parking.'): v
+                                            for k, v in options.items()
+                                            if k.startswith('parking.')}))
     x0, y0, _ = scenario.robot.initial_pose
     return NodeSpec('robotica_ctrl', 'planner', 'planner', {
         **options, 'world_file': str(scenario.source), 'start': [float(x0), float(y0)],
         'goal': goal, 'frame_id': scenario.path.frame_id},
-        remappings={'plan': '/path', 'odom': '/ground_truth/odom'}, use_sim_time=False)
+        remappings=remappings, use_sim_time=False)
+
+
+def _parking_vehicle(scenario: Scenario) -> dict[str, float]:
+    """
+    Return the parking vehicle's parameters that the robot's geometry gives (_planner).
+
+    A malformed polygon gives none: the simulator's check names it.
+    """
+    robot = scenario.robot
+    vehicle = {'parking.h1': robot.wheelbase, 'parking.max_steering': robot.max_steering_angle}
+    if len(robot.footprint_polygon) >= 6 and len(robot.footprint_polygon) % 2 == 0:
+        body = np.reshape(np.asarray(robot.footprint_polygon, dtype=float), (-1, 2))
+        vehicle.update({'parking.a1': float(body[:, 0].max()),
+                        'parking.b1': float(-body[:, 0].min()),
+                        'parking.c1': float(np.ptp(body[:, 1]))})
+    return vehicle
+
+
+def _side_sonar(scenario: Scenario) -> tuple[str, tuple[float, ...]]:
+    """Return the topic and mount of the parking planner's side sonar (``planner.sonar``)."""
+    where = scenario.source or scenario.name
+    sonars = _range_topics(scenario).get('sonar', [])
+    index = scenario.planner.sonar
+    if not sonars:
+        raise ScenarioError(f'{where}: planner: the parking method reads a side sonar: enable '
+                            'sensors.sonar with its mounts')
+    if not 0 <= index < len(sonars):
+        raise ScenarioError(f'{where}: planner.sonar must be the index of one of the '
+                            f'{len(sonars)} sonar mounts (0 to {len(sonars) - 1}), got {index}')
+    return sonars[index]
 
 
 def _plan_mobile(scenario: Scenario) -> list[NodeSpec]:
@@ -963,7 +1025,10 @@ def _plan_mobile(scenario: Scenario) -> list[NodeSpec]:
         world = world_from_mapping(scenario.world, Path(scenario.source).parent)
     if robot.footprint_radius > 0.0:
         simulator['footprint.radius'] = robot.footprint_radius
-    _node_check(where, 'robot', {**SIMULATOR_KEYS, 'footprint.radius': 'robot.footprint_radius'},
+    if robot.footprint_polygon:
+        simulator['footprint.polygon'] = list(robot.footprint_polygon)
+    _node_check(where, 'robot', {**SIMULATOR_KEYS, 'footprint.radius': 'robot.footprint_radius',
+                                 'footprint.polygon': 'robot.footprint_polygon'},
                 lambda: vehicle_simulation(simulator, scenario.step_period, world))
     sensors = _mobile_sensors(scenario)   # checked before the odometry's GPS model uses them
     odometry = scenario.odometry

@@ -51,6 +51,7 @@ class RobotSpec:
     longitudinal_slip: float = 0.0                 # [-] in [0, 1)
     initial_pose: tuple[float, ...] = (0.0, 0.0, 0.0)   # x [m], y [m], theta [rad] REP-103
     footprint_radius: float = 0.0                  # [m] contact circle; 0: the outline
+    footprint_polygon: tuple[float, ...] = ()      # [x1, y1, x2, y2, ...] [m] base_link; ()
 
 
 @dataclass(frozen=True)
@@ -224,11 +225,14 @@ class PlannerSpec:
     A planner instead of the fixed path (book ch. 12): its method, the goal and its options.
 
     ``options`` are the planner node's parameters by name (``robot_radius``, ``neighbours``,
-    ``smooth``, ...); an empty ``method``: no planner, the ``path`` section's path is followed.
+    ``smooth``, ``parking.pass_length``, ...); an empty ``method``: no planner, the ``path``
+    section's path is followed. Method ``parking`` takes no goal: it parks in the first space
+    the side sonar number ``sonar`` (of ``sensors.sonar.mounts``) finds on its pass.
     """
 
     method: str = ''
     goal: tuple[float, ...] = ()                   # (x, y) [m] in the world's frame
+    sonar: int = -1                                # parking: the side sonar's index
     options: dict = field(default_factory=dict)
 
 
@@ -495,7 +499,7 @@ def _normalise(data: dict) -> dict:
                                                  'trial_period', 'task', 'cartesian',
                                                  'external'), 'gains'),
                                  ('navigator', ('behaviour',), 'gains'),
-                                 ('planner', ('method', 'goal'), 'options')):
+                                 ('planner', ('method', 'goal', 'sonar'), 'options')):
         if isinstance(data.get(section), dict):
             values = dict(data[section])
             data[section] = {free: values, **{k: values.pop(k) for k in fixed if k in values}}
