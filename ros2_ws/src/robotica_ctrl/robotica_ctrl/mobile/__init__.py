@@ -10,14 +10,18 @@ error), :mod:`~robotica_ctrl.mobile.quintic_tracker` (Shin's quintic, §9.3.2),
 :mod:`~robotica_ctrl.mobile.frenet_path_following` (§9.4.3–9.4.4),
 :mod:`~robotica_ctrl.mobile.gpc_tracker` (the GPC path tracker of §9.5, on the generalised
 predictive controller of :mod:`~robotica_ctrl.mobile.gpc`) and
-:mod:`~robotica_ctrl.mobile.open_loop` (a profile played without feedback). Each law answers
+:mod:`~robotica_ctrl.mobile.open_loop` (a profile played without feedback), and
+:mod:`~robotica_ctrl.mobile.reversing_pure_pursuit` (pure pursuit that reverses at a path's
+cusps, for manoeuvres such as parallel parking). Each law answers
 with the one :class:`~robotica_ctrl.mobile.tracker_base.TrackerOutput` through the
 :class:`~robotica_ctrl.mobile.tracker_base.TrackingLaw` interface;
 :mod:`~robotica_ctrl.mobile.tracking_laws` builds any of them by name with its parameters.
 :mod:`~robotica_ctrl.mobile.reactive` holds the reactive behaviours of §9.6 (wall following,
-corridor centring, VFF, generalised potential, speed modulation).
+corridor centring, VFF, generalised potential, speed modulation), run by
+:mod:`~robotica_ctrl.mobile.reactive_navigation` on :mod:`~robotica_ctrl.mobile.range_perception`.
 """
 
 __all__ = ['adaptive_lookahead', 'frenet_path_following', 'gpc', 'gpc_tracker', 'open_loop',
-           'path', 'path_shapes', 'pure_pursuit', 'quintic_tracker', 'reactive', 'tracker_base',
+           'path', 'path_shapes', 'pure_pursuit', 'quintic_tracker', 'range_perception',
+           'reactive', 'reactive_navigation', 'reversing_pure_pursuit', 'tracker_base',
            'tracking_laws', 'trajectory_tracking']

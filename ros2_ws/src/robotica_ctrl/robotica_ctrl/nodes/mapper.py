@@ -29,6 +29,7 @@ import numpy as np
 from numpy.typing import NDArray
 from rclpy.experimental import EventsExecutor
 from rclpy.parameter import Parameter
+from robotica_kin.mobile.pose_history import PoseHistory
 from robotica_kin.ros.convert import pose2d_from_odometry, stamp_to_seconds
 from robotica_kin.ros.entry_point import run_node
 from robotica_kin.ros.grid_messages import grid_message
@@ -86,7 +87,7 @@ class MapperNode(GuardedNode):
             raise ValueError(f'a map of {shape[1]} x {shape[0]} cells is more than '
                              f'{MAX_MAP_CELLS}: grow resolution or shrink size')
         self._map = OccupancyMap(shape, resolution, (origin[0], origin[1], 0.0))
-        self._poses: list[tuple[float, np.ndarray]] = []
+        self._poses = PoseHistory(POSES_KEPT)
         self._last_publish = -np.inf
         self._pub = self.create_publisher(OccupancyGridMsg, 'map', LATCHED_QOS)
         self.create_subscription(Odometry, 'odom', self._on_odom, STREAM_SUB_QOS)
@@ -102,20 +103,16 @@ class MapperNode(GuardedNode):
                                f'({origin[0]:g}, {origin[1]:g}) m with {" and ".join(sources)}')
 
     def _on_odom(self, msg: Odometry) -> None:
-        pose = pose2d_from_odometry(msg)
-        if not np.isfinite(pose).all():
-            raise ValueError(f'pose not finite: {pose.tolist()}')
-        self._poses.append((stamp_to_seconds(msg.header.stamp), pose))
-        del self._poses[:-POSES_KEPT]
+        self._poses.add(stamp_to_seconds(msg.header.stamp), pose2d_from_odometry(msg))
 
     def _pose_at(self, t: float, what: str) -> NDArray[np.float64] | None:
         """Return the kept pose nearest ``t`` [s], or None (said so) when none is close."""
-        if not self._poses:
+        if not len(self._poses):
             self.get_logger().warn(f'a {what} before any pose: skipped',
                                    throttle_duration_sec=5.0)
             return None
-        gap, pose = min(((abs(s - t), p) for s, p in self._poses), key=lambda g: g[0])
-        if gap > self._tolerance:
+        pose = self._poses.nearest(t, self._tolerance)
+        if pose is None:
             self.get_logger().warn(f'no pose within {self._tolerance} s of the {what} at '
                                    f'{t:.3f} s: skipped', throttle_duration_sec=5.0)
             return None
