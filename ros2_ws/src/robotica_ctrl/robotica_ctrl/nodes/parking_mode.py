@@ -16,6 +16,7 @@ ends with no plan is reported too.
 simulator can follow the planner (``lockstep.follow_topics``) and not drive on while a plan
 is being made.
 """
+import math
 import time
 from typing import Callable, Optional
 
@@ -70,6 +71,7 @@ class ParkingMode:
                                   high=10.0, read_only=True)
         self._history = PoseHistory(POSES_KEPT)
         self._pending: list[Range] = []
+        self._last_reading = -math.inf   # [s] the stamp of the last reading placed on the pass
         self._pose: Optional[NDArray[np.float64]] = None
         self._state = 'idle'   # idle, searching, planned
         self._progress = node.create_publisher(Header, '~/progress', STREAM_PUB_QOS)
@@ -119,17 +121,25 @@ class ParkingMode:
     def _on_range(self, msg: Range) -> None:
         if self._state != 'searching':
             return
+        if not (math.isfinite(msg.min_range) and math.isfinite(msg.max_range)
+                and 0.0 <= msg.min_range < msg.max_range):   # the reading may be ±inf, NaN
+            raise ValueError(f'a Range needs finite 0 <= min_range < max_range, got '
+                             f'{msg.min_range!r}, {msg.max_range!r}')
         t = stamp_to_seconds(msg.header.stamp)
         if t > self._history.latest:   # its pose may still be on its way
             self._pending.append(msg)
             del self._pending[:-PENDING_KEPT]
             return
+        if t <= self._last_reading:   # the pass is read in order: a stale one would go back
+            raise ValueError(f'a side reading at {t:.3f} s, not after the last one read '
+                             f'({self._last_reading:.3f} s)')
         pose = self._history.nearest(t, self._tolerance)
         if pose is None:
             self._node.get_logger().warn(f'no pose within {self._tolerance} s of the side '
                                          f'reading at {t:.3f} s: skipped',
                                          throttle_duration_sec=5.0)
             return
+        self._last_reading = t
         try:
             found = self._search.add_reading(pose, msg.range, msg.min_range, msg.max_range)
         except ValueError as err:   # the pass turned or went back: no space can be measured
@@ -168,6 +178,7 @@ class ParkingMode:
     def _start(self) -> str:
         assert self._pose is not None
         passing = self._search.start(self._pose)
+        self._last_reading = -math.inf
         self._state = 'searching'
         self._publish(PlanResult(passing, self._search.params.pass_length, '', 0),
                       path_message(passing, self._frame), 0.0, [])

@@ -161,3 +161,30 @@ def test_bad_parking_parameters_are_refused(start_node, read_output, arguments, 
     assert proc.wait(timeout=30) == 2
     text = read_output(proc)
     assert reason in text and 'Traceback' not in text
+
+
+def test_hostile_readings_are_dropped_and_the_search_goes_on(start_node, ros_node, spin,
+                                                             read_output, street):
+    # Readings with NaN or inverted limits, and REP-117's NaN and +inf ranges, among the good
+    # ones: the bad ones are logged and dropped, the others (NaN: unknown, +inf: no echo) read.
+    node, executor = ros_node
+    proc = _start(start_node, street, '-p', 'parking.autostart:=true')
+    statuses = []
+    node.create_subscription(PlanStatus, '/planner/status', statuses.append, LATCHED)
+    hostile = node.create_publisher(Range, 'side_range', 50)
+    bad = 0
+
+    def found():
+        nonlocal bad
+        for field, value in (('min_range', math.nan), ('max_range', -1.0), ('range', math.nan),
+                             ('range', math.inf)):
+            msg = side(9.99, 0.0)
+            setattr(msg, field, value)
+            hostile.publish(msg)
+        bad += 1
+        return statuses and statuses[-1].found and statuses[-1].points > 100
+
+    assert _drive(node, executor, spin, found)
+    assert bad > 10 and proc.poll() is None
+    assert spin(executor, lambda: 'a Range needs finite 0 <= min_range < max_range'
+                in read_output(proc))
