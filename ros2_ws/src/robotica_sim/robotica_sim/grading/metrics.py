@@ -7,8 +7,10 @@ with its unit, topics and definition; docs/grading.md explains them):
 - **mobile** (path tracking, book ch. 9): cross-track and heading errors of the ground truth
   against the reference ``/path`` (the closest point is searched within a window around the
   progress, as the trackers do, so that a closed or self-crossing path is followed lap by
-  lap), completion, time, path length, control effort, collisions and time in contact (from
-  the simulator's ``/bumper``, recorded when the run has a world); the final pose error
+  lap; a path whose orientations are the vehicle's headings, as a parking plan that reverses
+  sends it, is measured against those headings: :func:`segment_directions`), completion,
+  time, path length, control effort, collisions and time in contact (from the simulator's
+  ``/bumper``, recorded when the run has a world); the final pose error
   against the last pose of the last ``/path`` (a parking plan's parked goal, issue 21) and the
   number of manoeuvres (:func:`travel_stretches` of the truth's speed);
 - **estimation** (book ch. 7): the error of the ``/odom`` estimate against the ground truth,
@@ -37,8 +39,8 @@ from robotica_sim.grading.series import RunSeries, Series, TOPICS
 
 __all__ = ['METRICS', 'MetricInfo', 'MetricParams', 'MetricValue', 'RunMetrics',
            'compute_metrics', 'contact_events', 'energy', 'max_abs', 'normal_fit', 'overshoot',
-           'path_errors', 'pose_errors', 'reading_error', 'rms', 'settling_time',
-           'total_variation', 'travel_stretches', 'travelled_length']
+           'path_errors', 'pose_errors', 'reading_error', 'rms', 'segment_directions',
+           'settling_time', 'total_variation', 'travel_stretches', 'travelled_length']
 
 MetricValue = float | bool | list[float | None] | None
 """A metric's value: a number, a flag, one number per joint (None: n/a for that joint)."""
@@ -53,16 +55,20 @@ class MetricParams:
     settling_band: float = 0.02   # [-] settling band, fraction of the joint's reference span
     sigma_bound: float = 3.0      # [-] consistency bound of the estimate, in std deviations
     stop_speed: float = 0.01      # [m/s] |v| up to this is a stop, for manoeuvres
+    orientation_tolerance: float = 0.05   # [rad] /path orientation vs tangent, in (0, pi/4]
 
     def __post_init__(self) -> None:
         for name in ('goal_tolerance', 'search_window', 'settling_band', 'sigma_bound',
-                     'stop_speed'):
+                     'stop_speed', 'orientation_tolerance'):
             value = getattr(self, name)
             if isinstance(value, bool) or not isinstance(value, (int, float)) or not (
                     math.isfinite(value) and value > 0.0):
                 raise ValueError(f'{name} must be a finite number > 0, got {value!r}')
         if self.settling_band >= 1.0:
             raise ValueError(f'settling_band must be < 1, got {self.settling_band!r}')
+        if self.orientation_tolerance > math.pi / 4.0:
+            raise ValueError(f'orientation_tolerance must be <= pi/4 rad, got '
+                             f'{self.orientation_tolerance!r}')
 
 
 @dataclass(frozen=True)
@@ -84,14 +90,19 @@ _JOINT_ERROR = (_JOINTS, _REFERENCE)   # or the controller's report, _CONTROLLER
 METRICS: dict[str, MetricInfo] = {
     'rms_cross_track': MetricInfo(
         'm', 'mobile', (_TRUTH, _PATH),
-        'RMS over the ground-truth samples of the signed distance to the path (> 0 left); '
+        'RMS over the ground-truth samples of the signed distance to the path (> 0 left of '
+        'the travel direction; on a reverse segment of a path whose orientations are the '
+        'vehicle headings, > 0 left of the heading, as the reversing tracker measures it); '
         'from /path_tracker/tracking_error when the bag lacks the truth or the path'),
     'max_cross_track': MetricInfo(
         'm', 'mobile', (_TRUTH, _PATH), 'largest |cross-track error|, as rms_cross_track'),
     'rms_heading_error': MetricInfo(
         'rad', 'mobile', (_TRUTH, _PATH),
-        'RMS of the truth heading minus the path tangent heading at the closest point, '
-        'wrapped to (-pi, pi]; from the tracking error topic as rms_cross_track'),
+        'RMS of the truth heading minus the reference heading at the closest point, wrapped '
+        'to (-pi, pi]: the heading the /path orientations give when each segment is within '
+        'orientation_tolerance of its first pose orientation or of its opposite (the tangent, '
+        '+ pi on a reverse segment), else the path tangent; from the tracking error topic as '
+        'rms_cross_track'),
     'max_heading_error': MetricInfo(
         'rad', 'mobile', (_TRUTH, _PATH), 'largest |heading error|, as rms_heading_error'),
     'completion': MetricInfo(
@@ -271,9 +282,87 @@ def travel_stretches(v: ArrayLike, stop_speed: float) -> int:
     return int(moving.size and 1 + np.count_nonzero(np.diff(moving)))
 
 
+_DUPLICATE = 1e-12
+"""[m] A path point this close to its predecessor is dropped (as
+:class:`~robotica_ctrl.mobile.path.PolylinePath` drops it): its step is no segment."""
+
+
+def segment_directions(points: ArrayLike, headings: ArrayLike | None,
+                       tolerance: float = 0.05) -> NDArray[np.int8] | None:
+    """
+    Return each segment's direction of travel if a path's orientations are vehicle headings.
+
+    A ``nav_msgs/Path`` gives each pose an orientation. A planner that drives forward gives
+    it the tangent (or leaves it the identity, yaw 0, as some external planners do); a plan
+    that also reverses (the parking planner of issue 21) gives it the vehicle's heading,
+    which on a reverse segment points against the travel. Each segment of non-zero length
+    (those of ``PolylinePath(points)``: a point within 1e-12 m of its predecessor is dropped)
+    is compared with the orientation ψ of the pose it leaves from (the last pose before the
+    next distinct point): forward (+1) when its tangent is within ``tolerance`` of ψ, reverse
+    (-1) when within ``tolerance`` of ψ + π. When every segment is one or the other, the
+    orientations are the vehicle's headings and their directions are returned; otherwise
+    (an orientation across a segment, an orientation that is not finite, no headings) None:
+    the orientations say nothing of the heading, and the tangent is the reference.
+
+    Parameters
+    ----------
+    points : array_like, shape (N, 2)
+        The path's positions [m].
+    headings : array_like, shape (N,), or None
+        The yaw [rad] of each pose's orientation.
+    tolerance : float
+        [rad] the largest angle between a segment and its pose's orientation (or its
+        opposite), in (0, π/4].
+
+    Returns
+    -------
+    ndarray of int8, shape (M,), or None
+        +1 or -1 for each of the M segments of ``PolylinePath(points)``.
+
+    Raises
+    ------
+    ValueError
+        If ``points`` is not (N, 2), ``headings`` not (N,), or ``tolerance`` out of range.
+
+    Examples
+    --------
+    Two metres out and one back with the heading 0 throughout; then a path along y whose
+    orientations are the identity (not its tangent, π/2).
+
+    >>> segment_directions([[0, 0], [1, 0], [2, 0], [2, 0], [1, 0]], [0, 0, 0, 0, 0]).tolist()
+    [1, 1, -1]
+    >>> segment_directions([[0, 0], [0, 1]], [0.0, 0.0]) is None
+    True
+
+    """
+    p = np.asarray(points, dtype=np.float64)
+    if p.ndim != 2 or p.shape[1] != 2:
+        raise ValueError(f'points must have shape (N, 2), got {p.shape}')
+    if not (isinstance(tolerance, (int, float)) and 0.0 < tolerance <= math.pi / 4.0):
+        raise ValueError(f'tolerance must be in (0, pi/4] rad, got {tolerance!r}')
+    if headings is None:
+        return None
+    psi = np.asarray(headings, dtype=np.float64)
+    if psi.shape != (len(p),):
+        raise ValueError(f'headings must have shape ({len(p)},), one per point, got '
+                         f'{psi.shape}')
+    if not (np.all(np.isfinite(p)) and np.all(np.isfinite(psi))):
+        return None
+    leaving = np.flatnonzero(np.hypot(*np.diff(p, axis=0).T) > _DUPLICATE)   # step k: k, k+1
+    if leaving.size == 0:
+        return None
+    vertices = p[np.concatenate(([0], leaving + 1))]   # PolylinePath's points
+    step = np.diff(vertices, axis=0)
+    deviation = np.abs(wrap_to_pi(np.arctan2(step[:, 1], step[:, 0]) - psi[leaving]))
+    forward, reverse = deviation <= tolerance, deviation >= math.pi - tolerance
+    if not np.all(forward | reverse):
+        return None
+    return np.where(forward, 1, -1).astype(np.int8)
+
+
 def path_errors(path: PolylinePath, x: ArrayLike, y: ArrayLike, theta: ArrayLike,
-                window: float) -> tuple[NDArray[np.float64], NDArray[np.float64],
-                                        NDArray[np.float64]]:
+                window: float, directions: ArrayLike | None = None
+                ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
     """
     Project poses onto a path in order, following the progress (book fig. 9.4, step 1).
 
@@ -293,6 +382,18 @@ def path_errors(path: PolylinePath, x: ArrayLike, y: ArrayLike, theta: ArrayLike
     of a figure eight is measured on the lobe it drives, not on the other one; one that starts
     on the far lobe is measured from there.
 
+    With ``directions`` (:func:`segment_directions`: the path's orientations are the vehicle's
+    headings) a reverse segment (-1) is measured as the reversing tracker
+    (:class:`~robotica_ctrl.mobile.reversing_pure_pursuit.ReversingPurePursuit`) measures it:
+    against the heading the vehicle should have there, its tangent + π (within the tolerance
+    of :func:`segment_directions`, the orientation of its pose: the tangent is used so that a
+    vehicle on the segment is measured as on a forward one, whatever the sampling of an arc),
+    and the cross-track error is > 0 left of that heading (right of the travel). A path
+    whose orientations are all along its tangents (+1 everywhere) is measured exactly as
+    without them. On a path with a cusp, where the way back may run over the way out, a
+    closest point ahead of the progress (within ``window``) that is as close as the one
+    found around it is taken, so that the progress goes on past the cusp instead of back.
+
     Parameters
     ----------
     path : PolylinePath
@@ -301,23 +402,33 @@ def path_errors(path: PolylinePath, x: ArrayLike, y: ArrayLike, theta: ArrayLike
         Poses [m, m, rad], REP-103; n >= 1.
     window : float
         Half-width [m] of the search around the progress (> 0).
+    directions : array_like, shape (M,), optional
+        +1 (forward) or -1 (reverse) for each of the path's M segments; None: all forward.
 
     Returns
     -------
     progress, cross_track, heading_error : ndarray, shape (n,)
         Progress [m]: the arc length of the closest point, plus the path length for each lap
         completed on a closed path (a start within ``window`` behind the end of a closed path
-        is just behind its start: negative); signed lateral offset [m] (> 0 left); heading
-        minus the tangent heading [rad], wrapped to (-pi, pi].
+        is just behind its start: negative); signed lateral offset [m] (> 0 left of the
+        travel; of the heading on a reverse segment); heading minus the reference heading
+        (the tangent heading; + π on a reverse segment) [rad], wrapped to (-pi, pi].
 
     Raises
     ------
     ValueError
-        If the inputs differ in length, are empty or not finite, or ``window`` is not > 0.
+        If the inputs differ in length, are empty or not finite, ``window`` is not > 0, or
+        ``directions`` is not one +1 or -1 per segment.
 
     Examples
     --------
     >>> s, e, h = path_errors(PolylinePath([[0, 0], [4, 0]]), [1.0], [0.5], [0.1], 2.0)
+    >>> s.tolist(), e.tolist(), h.round(6).tolist()
+    ([1.0], [0.5], [0.1])
+
+    Backing along the same line, heading 0: 0.5 m left of the vehicle, heading error 0.1.
+
+    >>> s, e, h = path_errors(PolylinePath([[4, 0], [0, 0]]), [3.0], [0.5], [0.1], 2.0, [-1])
     >>> s.tolist(), e.tolist(), h.round(6).tolist()
     ([1.0], [0.5], [0.1])
 
@@ -332,23 +443,42 @@ def path_errors(path: PolylinePath, x: ArrayLike, y: ArrayLike, theta: ArrayLike
     points = np.column_stack([xs, ys])
     if not (np.all(np.isfinite(points)) and np.all(np.isfinite(thetas))):
         raise ValueError('poses must be finite')
+    signs = np.ones(len(path.points) - 1)
+    if directions is not None:
+        given = np.asarray(directions)
+        if given.shape != signs.shape or not np.all(np.abs(given) == 1):
+            raise ValueError(f'directions must be +1 or -1 for each of the {len(signs)} '
+                             f'segments of the path, got {given!r}')
+        signs = given.astype(np.float64)
+    cusps = bool(np.any(signs < 0.0) and np.any(signs > 0.0))
     n = len(points)
-    progress, cross, tangent = np.empty(n), np.empty(n), np.empty(n)
-    steps = _follow(path, points, _start_progress(path, points, window), window)
+    progress, cross, reference = np.empty(n), np.empty(n), np.empty(n)
+    steps = _follow(path, points, _start_progress(path, points, window, cusps), window, cusps)
     for k, (s, projection) in enumerate(steps):
-        progress[k], cross[k] = s, projection.cross_track
-        tangent[k] = projection.tangent_heading
-    return progress, cross, wrap_to_pi(thetas - tangent)
+        sign = signs[projection.segment]
+        progress[k], cross[k] = s, sign * projection.cross_track
+        reference[k] = projection.tangent_heading + (math.pi if sign < 0.0 else 0.0)
+    return progress, cross, wrap_to_pi(thetas - reference)
 
 
 def _follow(path: PolylinePath, points: NDArray[np.float64], start: float,
-            window: float) -> Iterator[tuple[float, PathProjection]]:
-    """Yield the progress [m] and projection of each point, from progress ``start`` [m]."""
+            window: float, ahead: bool = False) -> Iterator[tuple[float, PathProjection]]:
+    """
+    Yield the progress [m] and projection of each point, from progress ``start`` [m].
+
+    ``ahead``: a closest point in [progress, progress + window] as close (1e-9 m) as the one
+    around the progress is taken (a path with cusps, whose way back may retrace its way out).
+    """
     length = path.length
     laps = math.floor(start / length)
     hint = start - laps * length
     for point in points:
         projection = path.project(point, s_hint=hint, window=window)
+        end = min(hint + window, length)
+        if ahead and end > hint:
+            forward = path.project(point, s_hint=0.5 * (hint + end), window=0.5 * (end - hint))
+            if forward.distance <= projection.distance + 1e-9:
+                projection = forward
         if path.closed and hint + window > length:
             # Past the end of a closed path the search goes on from its start (next lap).
             wrapped = path.project(point, s_hint=0.0, window=hint + window - length)
@@ -358,7 +488,8 @@ def _follow(path: PolylinePath, points: NDArray[np.float64], start: float,
         yield laps * length + hint, projection
 
 
-def _start_progress(path: PolylinePath, points: NDArray[np.float64], window: float) -> float:
+def _start_progress(path: PolylinePath, points: NDArray[np.float64], window: float,
+                    ahead: bool = False) -> float:
     """Return the progress [m] at which :func:`path_errors` starts following ``points``."""
     first, length = points[0], path.length
     candidates = set()
@@ -374,8 +505,8 @@ def _start_progress(path: PolylinePath, points: NDArray[np.float64], window: flo
     moved = np.hypot(points[:, 0] - first[0], points[:, 1] - first[1])
     beyond = np.flatnonzero(moved >= 2.0 * window)
     stretch = points[:beyond[0] + 1] if beyond.size else points
-    scores = [(sum(p.cross_track ** 2 for _, p in _follow(path, stretch, start, window)), start)
-              for start in sorted(candidates)]
+    scores = [(sum(p.cross_track ** 2 for _, p in _follow(path, stretch, start, window, ahead)),
+               start) for start in sorted(candidates)]
     best = min(score for score, _ in scores)
     return next(start for score, start in scores if score <= best * (1.0 + 1e-9) + 1e-12)
 
@@ -503,8 +634,16 @@ def _mobile(run: RunSeries, params: MetricParams, out: RunMetrics) -> None:
         _final_pose(run, truth, out)
     if truth is not None and run.path is not None and len(run.path) >= 2:
         path = PolylinePath(run.path)
+        directions = segment_directions(run.path, run.path_headings,
+                                        params.orientation_tolerance)
         s, cross, heading = path_errors(path, truth['x'], truth['y'], truth['theta'],
-                                        params.search_window)
+                                        params.search_window, directions)
+        if directions is not None and np.any(directions < 0):
+            reverse = f'{np.count_nonzero(directions < 0)} of {len(directions)} segments'
+            for name in ('rms_heading_error', 'max_heading_error'):
+                notes[name] = f'against the /path orientations ({reverse} reverse)'
+            for name in ('rms_cross_track', 'max_cross_track'):
+                notes[name] = f'> 0 left of the heading ({reverse} reverse)'
         values['rms_cross_track'], values['max_cross_track'] = rms(cross), max_abs(cross)
         values['rms_heading_error'], values['max_heading_error'] = (rms(heading),
                                                                     max_abs(heading))

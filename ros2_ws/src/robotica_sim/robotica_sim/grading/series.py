@@ -176,6 +176,12 @@ class RunSeries:
       the last ``/path``: the heading the vehicle should end with (a parking plan's
       orientations are the vehicle's headings, also on reverse segments); None without a
       ``/path``, for one without poses or with a last orientation that is not finite.
+      Equal to ``path_headings[-1]`` when that is finite.
+    - ``path_headings``: the yaw [rad], in (-π, π], of the orientation of every pose of the
+      last ``/path`` (N,), as ``path``'s rows (NaN where a quaternion is not finite): a plan's
+      vehicle headings, or a planner's tangents, or identity orientations (0);
+      :func:`~robotica_sim.grading.metrics.segment_directions` decides which. None without a
+      ``/path``.
     - ``task_final``: the last step of a task-space law (``/joint_controller/force_control``
       or ``cartesian_control``) as arrays by field: a force law's ``position_reference``,
       ``position`` [m], ``force_reference``, ``force`` [N] (task axes, NaN where a reference is
@@ -209,6 +215,7 @@ class RunSeries:
     map_grid: OccupancyGrid | None = None   # the last /map
     task_final: dict[str, NDArray[np.float64]] | None = None   # a task-space law's last step
     path_end_heading: float | None = None   # [rad] yaw of the last /path pose's orientation
+    path_headings: NDArray[np.float64] | None = None   # (N,) [rad] yaw of each /path pose
 
     @property
     def is_manipulator(self) -> bool:
@@ -470,22 +477,22 @@ def _grid(msg: Any) -> OccupancyGrid | None:
         return None
 
 
-def _path(msg: Any) -> tuple[NDArray[np.float64], NDArray[np.float64] | None, float | None]:
+def _path(msg: Any) -> tuple[NDArray[np.float64], NDArray[np.float64] | None,
+                             NDArray[np.float64]]:
     """
-    Return a nav_msgs/Path's positions (N, 2) [m], its stamps if increasing, its end heading.
+    Return a nav_msgs/Path's positions (N, 2) [m], its stamps if increasing, its headings (N,).
 
-    The end heading [rad] is the yaw of the last pose's orientation (the vehicle's heading
-    there, also on a reverse segment, whose orientation points against the travel); None for
-    a path without poses or with a last orientation that is not finite.
+    The headings [rad] are the yaws of the poses' orientations (a parking plan's vehicle
+    headings, which on a reverse segment point against the travel), NaN where an orientation
+    is not finite.
     """
     points = np.array([[p.pose.position.x, p.pose.position.y] for p in msg.poses],
                       dtype=np.float64).reshape(-1, 2)
     stamps = np.array([p.header.stamp.sec + p.header.stamp.nanosec * 1e-9 for p in msg.poses],
                       dtype=np.float64)
     timed = len(stamps) >= 2 and bool(np.all(np.diff(stamps) > 0.0))
-    heading = _yaw(msg.poses[-1].pose.orientation) if len(msg.poses) else None
-    return (points, stamps if timed else None,
-            heading if heading is not None and math.isfinite(heading) else None)
+    headings = np.array([_yaw(p.pose.orientation) for p in msg.poses], dtype=np.float64)
+    return points, stamps if timed else None, headings
 
 
 def load_run(bag: str | Path, topics: Iterable[str] | None = None) -> RunSeries:
@@ -592,9 +599,12 @@ def load_run(bag: str | Path, topics: Iterable[str] | None = None) -> RunSeries:
     if 'clock' in decoded:
         clock = decoded['clock'].clock
         duration = clock.sec + clock.nanosec * 1e-9
-    path_points = path_times = path_end_heading = None
+    path_points = path_times = path_headings = None
+    path_end_heading: float | None = None
     if 'path' in decoded:
-        path_points, path_times, path_end_heading = _path(decoded['path'])
+        path_points, path_times, path_headings = _path(decoded['path'])
+        if len(path_headings) and math.isfinite(path_headings[-1]):
+            path_end_heading = float(path_headings[-1])
     _check_values(path, {**series, **joints}, path_points)
     status = None
     if 'status' in decoded:
@@ -616,7 +626,8 @@ def load_run(bag: str | Path, topics: Iterable[str] | None = None) -> RunSeries:
         ranges={topic: _scalar_series(rows, range_receive[topic], _RANGE_COLUMNS)
                 for topic, rows in sorted(range_rows.items(), key=lambda i: _range_key(i[0]))},
         map_grid=_grid(decoded['map']) if 'map' in decoded else None,
-        task_final=_task_final(decoded), path_end_heading=path_end_heading)
+        task_final=_task_final(decoded), path_end_heading=path_end_heading,
+        path_headings=path_headings)
 
 
 def _range_key(topic: str) -> tuple[str, int]:

@@ -200,6 +200,7 @@ def test_the_last_paths_end_heading_is_read_back(tmp_path):
     run = load_run(write_bag(tmp_path / 'bag', topics))
     assert run.path.tolist() == [[6.0, 1.0], [5.0, 0.6], [4.0, 0.5]]
     assert run.path_end_heading == pytest.approx(2.5, abs=1e-12)
+    assert run.path_headings == pytest.approx([0.0, 0.3, 2.5], abs=1e-12)   # every pose's yaw
     # The truth ends at (4, 0.5) heading -3.1 rad: 0 m, and |wrap(-3.1 - 2.5)| = 2 pi - 5.6.
     metrics = compute_metrics(run).values
     assert metrics['final_position_error'] == pytest.approx(0.0, abs=1e-12)
@@ -208,6 +209,13 @@ def test_the_last_paths_end_heading_is_read_back(tmp_path):
     topics['/path'] = ('nav_msgs/msg/Path', [(0.0, _parking_path(types, []))])
     empty = load_run(write_bag(tmp_path / 'empty', topics))
     assert empty.path.shape == (0, 2) and empty.path_end_heading is None
+    assert empty.path_headings.shape == (0,)
+    # An orientation that is not finite is NaN among the headings; the end heading is None.
+    topics['/path'] = ('nav_msgs/msg/Path', [(0.0, _parking_path(
+        types, [(0.0, 0.0, 0.0), (1.0, 0.0, math.nan)]))])
+    unoriented = load_run(write_bag(tmp_path / 'nan', topics))
+    assert unoriented.path_headings[0] == 0.0 and math.isnan(unoriented.path_headings[1])
+    assert unoriented.path_end_heading is None
 
 
 def test_topic_selection_and_errors(tmp_path):
