@@ -22,6 +22,7 @@ Queries on the world model: point in obstacle, clearance, obstacle growing, foot
   or long the step.
 """
 
+import functools
 import math
 from typing import Optional, Union
 
@@ -164,7 +165,19 @@ def _parse_footprint(footprint: Footprint) -> tuple[float, Optional[NDArray[np.f
         if not (math.isfinite(footprint) and footprint > 0.0):
             raise ValueError(f'footprint radius must be > 0 m, got {footprint!r}')
         return float(footprint), None
-    polygon = validate_polygon(footprint, 'footprint')
+    try:
+        vertices = np.asarray(footprint, dtype=np.float64)
+    except (TypeError, ValueError):   # not a table of numbers: validate_polygon names it
+        validate_polygon(footprint, 'footprint')
+        raise
+    return _parse_polygon(vertices.tobytes(), vertices.shape)
+
+
+@functools.lru_cache(maxsize=64)
+def _parse_polygon(data: bytes, shape: tuple[int, ...]
+                   ) -> tuple[float, Optional[NDArray[np.float64]]]:
+    """Validate a footprint polygon once (read-only): a plan checks one at every pose."""
+    polygon = validate_polygon(np.frombuffer(data, dtype=np.float64).reshape(shape), 'footprint')
     return float(np.hypot(polygon[:, 0], polygon[:, 1]).max()), polygon
 
 
