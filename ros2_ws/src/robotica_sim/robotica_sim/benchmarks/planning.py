@@ -43,6 +43,10 @@ under 1 s) are judged on the minimum time of our rows.
 NetworkX is a dependency of the package for this comparison (pinned in
 ``requirements/robotica.txt``); ``networkx=False`` skips it (on 1000 x 1000 its graph takes
 seconds to build and about a gigabyte of memory).
+
+The command's second table, the course's parallel-parking planner, is
+:mod:`robotica_sim.benchmarks.parking_planning`; it shares :func:`alternate_runs` and
+:func:`format_ms`.
 """
 import dataclasses
 from dataclasses import dataclass
@@ -63,9 +67,9 @@ from scipy.sparse import csr_matrix
 from scipy.sparse.csgraph import dijkstra, shortest_path
 
 __all__ = ['COST_TOLERANCE', 'CostMismatch', 'GOALS', 'OBSTACLE_FRACTION', 'PlanningRow',
-           'REPEATS', 'RESOLUTION', 'SIZES', 'baseline_astar', 'check_costs',
-           'format_planning_table', 'grid_edges', 'planning_benchmark',
-           'planning_rows_json', 'random_grid']
+           'Progress', 'REPEATS', 'RESOLUTION', 'SIZES', 'alternate_runs', 'baseline_astar',
+           'check_costs', 'format_ms', 'format_planning_table', 'grid_edges',
+           'planning_benchmark', 'planning_rows_json', 'random_grid']
 
 SIZES = (200, 1000)           # cells a side
 RESOLUTION = 0.05             # [m/cell]
@@ -242,8 +246,8 @@ def baseline_astar(blocked: NDArray[np.bool_], start: tuple[int, int], goal: tup
     return math.inf, len(closed), []
 
 
-def _time(calls: Sequence[Callable[[], Any]], repeats: int
-          ) -> list[tuple[list[float], Any]]:
+def alternate_runs(calls: Sequence[Callable[[], Any]], repeats: int
+                   ) -> list[tuple[list[float], Any]]:
     """
     Return, per call, the seconds of ``repeats`` runs and the last run's result.
 
@@ -321,7 +325,7 @@ def _ours(case: _Case, blocked: NDArray[np.bool_], grid: OccupancyGrid, neighbou
         calls.append(lambda: baseline_astar(blocked, start, goal))
     progress(f'planning: {n} x {n}, {neighbours} neighbours: grid_astar, astar_cells'
              + (' and the plain-Python baseline' if neighbours == 8 else ''))
-    timed = _time(calls, case.repeats)
+    timed = alternate_runs(calls, case.repeats)
     (times, plan), (mask_times, mask_plan) = timed[:2]
     for name, result in (('grid_astar', plan), ('astar_cells', mask_plan)):
         if not result.found:
@@ -353,7 +357,7 @@ def _scipy(case: _Case, blocked: NDArray[np.bool_], neighbours: int, progress: P
     calls: list[Callable[[], Any]] = [lambda: dijkstra(graph, directed=True, indices=s)]
     if both:
         calls.append(lambda: shortest_path(graph, method='D', directed=True, indices=s))
-    timed = _time(calls, case.repeats)
+    timed = alternate_runs(calls, case.repeats)
     times, dist = timed[0]
     reached = int(np.isfinite(dist).sum())
     case.add('scipy.sparse.csgraph.dijkstra', neighbours, times, dist[t], reached,
@@ -387,7 +391,7 @@ def _networkx(case: _Case, blocked: NDArray[np.bool_], progress: Progress) -> No
         return dr + dc + _DIAGONAL_SAVING * min(dr, dc)
 
     progress(f'planning: {n} x {n}: NetworkX A* and Dijkstra')
-    (times, cost), (dijkstra_times, dijkstra_cost) = _time(
+    (times, cost), (dijkstra_times, dijkstra_cost) = alternate_runs(
         [lambda: nx.astar_path_length(graph, s, t, octile, 'weight'),
          lambda: nx.dijkstra_path_length(graph, s, t, 'weight')], case.repeats)
     case.add('networkx.astar_path_length', 8, times, cost, None,
@@ -426,7 +430,8 @@ def planning_benchmark(sizes: Sequence[int] = SIZES, repeats: int = REPEATS, see
     return rows
 
 
-def _ms(value: Optional[float]) -> str:
+def format_ms(value: Optional[float]) -> str:
+    """Return milliseconds with 3 significant figures or so ('' for None)."""
     if value is None:
         return ''
     return f'{value:.1f}' if value >= 10.0 else f'{value:.2f}'
@@ -439,11 +444,12 @@ def format_planning_table(rows: Sequence[PlanningRow]) -> str:
              '|---|---|---:|---:|---:|---:|---:|---:|---:|---|---|']
     for r in rows:
         goal = '' if r.goal_ms is None else (
-            f'< {_ms(r.goal_ms)} ms: {"met" if r.goal_met else "**not met**"}')
+            f'< {format_ms(r.goal_ms)} ms: {"met" if r.goal_met else "**not met**"}')
         expansions = '' if r.expansions is None else str(r.expansions)
         lines.append(f'| {r.size}×{r.size} ({r.obstacles:.1%} occupied) | {r.method} '
-                     f'| {r.neighbours} | {_ms(r.min_ms)} | {_ms(r.median_ms)} | {r.repeats} '
-                     f'| {_ms(r.build_ms)} | {expansions} | {r.cost:.6f} | {goal} | {r.note} |')
+                     f'| {r.neighbours} | {format_ms(r.min_ms)} | {format_ms(r.median_ms)} '
+                     f'| {r.repeats} | {format_ms(r.build_ms)} | {expansions} | {r.cost:.6f} '
+                     f'| {goal} | {r.note} |')
     return '\n'.join(lines)
 
 

@@ -22,8 +22,10 @@ of the joint controller on the PUMA 560 against the 1 ms servo period and runs e
 loop (joint laws on θ_i = sin t, Cartesian laws on a 10 cm line, force laws against the plane of
 Ej. 8.10); see :mod:`robotica_sim.benchmarks.control_laws`. ``robotica bench planning`` times
 grid A* on random 200 x 200 and 1000 x 1000 grids against a textbook Python A*, SciPy's and
-NetworkX's shortest paths on the same graph, all costs checked equal; see
-:mod:`robotica_sim.benchmarks.planning`.
+NetworkX's shortest paths on the same graph, all costs checked equal, and the course's
+parallel-parking planner (the plan, the planner node's search, the detection) in a second
+table; see :mod:`robotica_sim.benchmarks.planning` and
+:mod:`robotica_sim.benchmarks.parking_planning`.
 """
 import argparse
 import dataclasses
@@ -41,6 +43,8 @@ from robotica_sim.benchmarks.control_laws import (control_law_benchmark, format_
 from robotica_sim.benchmarks.kinematics import BenchmarkRow, run_kinematics_benchmark
 from robotica_sim.benchmarks.measurement_row import MeasurementRow
 from robotica_sim.benchmarks.mobile import mobile_core_benchmark
+from robotica_sim.benchmarks.parking_planning import (format_parking_table, parking_benchmark,
+                                                      parking_rows_json)
 from robotica_sim.benchmarks.planning import (format_planning_table, planning_benchmark,
                                               planning_rows_json, REPEATS, SIZES)
 from robotica_sim.benchmarks.raycast import raycast_benchmark
@@ -53,7 +57,7 @@ from robotica_sim.cli.options import integer, path, real
 
 HELP = ('measure the speed of the kinematics, the arm loop, the mobile loop, the tracking '
         "laws, the recorder, the viewer, a user's node, ray casting, the arm's control laws or "
-        'grid planning '
+        'grid and parking planning '
         '(robotica bench kin|arm|mobile|tracking|recorder|view|your_node|raycast|laws|planning)')
 EPILOG = """examples:
   robotica bench kin                       1000 configurations per robot, Markdown table
@@ -78,8 +82,10 @@ EPILOG = """examples:
                                            the 1 ms servo period, closed-loop error (10 s)
   robotica bench laws --duration 0.5 --count 100
   robotica bench planning                  grid A* on 200x200 and 1000x1000 against a Python
-                                           A*, SciPy and NetworkX (about 2 min)
+                                           A*, SciPy and NetworkX, then the parking planner
+                                           (about 2 min)
   robotica bench planning --skip-networkx --repeats 2 --sizes 200
+  robotica bench planning --skip-parking   grid A* only
 """
 SUITES = ('kin', 'arm', 'mobile', 'tracking', 'recorder', 'view', 'your_node', 'raycast',
           'laws', 'planning')
@@ -106,7 +112,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         "your_node = the cost of a user's Python tracker in the demo, "
                         'raycast = ray casting on the world model, '
                         "laws = the joint controller's control laws on the PUMA 560, "
-                        'planning = grid A* against a Python A*, SciPy and NetworkX')
+                        'planning = grid A* against a Python A*, SciPy and NetworkX, and the '
+                        'parallel-parking planner')
     parser.add_argument('--count', type=integer(1, MAX_COUNT), default=1000,
                         help='kin: random configurations per robot; arm: simulated steps of '
                         'the core and DDS round trips; raycast: scans per world; laws: update '
@@ -159,6 +166,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument('--skip-networkx', action='store_true',
                         help='planning: without NetworkX (its 1000 x 1000 graph takes seconds '
                         'and about a gigabyte)')
+    parser.add_argument('--skip-parking', action='store_true',
+                        help='planning: without the parallel-parking table (the plan, the '
+                        "planner node's search and the detection: about 20 s at 5 repeats)")
     parser.add_argument('--json', action='store_true', help='print JSON instead of a table')
     parser.add_argument('--quiet', action='store_true', help='no progress on stderr')
 
@@ -302,10 +312,16 @@ def _planning(args: argparse.Namespace, progress) -> int:
     except RuntimeError as err:   # a CostMismatch among them: the comparison failed
         print(f'robotica bench: planning: FAILED: {err}', file=sys.stderr)
         return 1
+    parking = [] if args.skip_parking else parking_benchmark(repeats=args.repeats,
+                                                             progress=progress)
     if args.json:
-        print(json.dumps(planning_rows_json(rows), indent=2))
+        print(json.dumps({'grid': planning_rows_json(rows),
+                          'parking': parking_rows_json(parking)}, indent=2))
     else:
         print(format_planning_table(rows))
+        if parking:
+            print()
+            print(format_parking_table(parking))
     return 0
 
 
