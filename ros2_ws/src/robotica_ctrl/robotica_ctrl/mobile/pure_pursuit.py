@@ -22,6 +22,7 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from robotica_ctrl.mobile.path import PolylinePath
 from robotica_ctrl.mobile.tracker_base import PathTrackerBase, TrackerOutput
 
 __all__ = ['PurePursuit', 'PurePursuitParams', 'curvature_to_point']
@@ -123,6 +124,11 @@ class PurePursuit(PathTrackerBase[PurePursuitParams]):
         Reference path, in the frame of the poses given to :meth:`update` (e.g. ``odom``).
     params : PurePursuitParams
         Tunables; replace them at run time with :meth:`set_params`.
+    extend_end : bool
+        Take the goal point beyond the end on the line of the last segment instead of at the
+        end (ext.): the vehicle then arrives along the end's tangent, not just at the point,
+        which a manoeuvre that must end parallel to a line (parking) needs. The end, the
+        approach and the finish are the path's own either way.
 
     Examples
     --------
@@ -131,8 +137,17 @@ class PurePursuit(PathTrackerBase[PurePursuitParams]):
     >>> out = tracker.update([0.0, 0.0, 0.0], 0.0)
     >>> out.linear, out.extras['curvature'], out.target_point
     (0.5, 0.0, array([0.5, 0. ]))
+    >>> ahead = PurePursuit(PolylinePath([[0.0, 0.0], [1.0, 0.0]]), PurePursuitParams(),
+    ...                     extend_end=True)
+    >>> ahead.update([0.8, 0.1, 0.0], 0.0).target_point   # 0.5 m on from s = 0.8 m
+    array([1.3, 0. ])
 
     """
+
+    def __init__(self, path: PolylinePath, params: PurePursuitParams,
+                 extend_end: bool = False) -> None:
+        super().__init__(path, params)
+        self._extend_end = extend_end
 
     def update(self, pose: ArrayLike, time: float, speed: float | None = None) -> TrackerOutput:
         """
@@ -179,7 +194,12 @@ class PurePursuit(PathTrackerBase[PurePursuitParams]):
         """
         x, projection = self._locate(pose)
         params = self._params
-        goal = self._path.point_at(projection.s + params.lookahead_distance)
+        ahead = projection.s + params.lookahead_distance
+        goal = self._path.point_at(ahead)
+        if self._extend_end and ahead > self._path.length:   # on along the last segment
+            end_heading = self._path.heading_at(self._path.length)
+            goal = goal + (ahead - self._path.length) * np.array(
+                [math.cos(end_heading), math.sin(end_heading)])
         theta = float(x[2])
         if self._finished:
             return self._output(0.0, 0.0, theta, projection, goal, True, {'curvature': 0.0})

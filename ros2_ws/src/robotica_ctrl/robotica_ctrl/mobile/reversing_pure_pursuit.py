@@ -8,11 +8,13 @@ heading, the vehicle moves in reverse. The path is cut at every change of direct
 into pieces, each followed by :class:`~robotica_ctrl.mobile.pure_pursuit.PurePursuit` (9.1)-(9.7);
 a reverse piece is followed as pure pursuit would follow it with the vehicle turned round (its
 heading θ + π), and the command is mirrored: the speed negated, the yaw rate kept (the turned
-vehicle's yaw rate is the vehicle's own). At the end of each piece the vehicle stops (the
-geometric mode of the parking planner: the wheels are re-oriented standing) and the next piece
-begins; the path is finished at the end of the last. The errors are measured against the
-postures' headings (left of the heading is > 0 forward and reverse alike), so they run on
-continuously through a cusp.
+vehicle's yaw rate is the vehicle's own). Each piece's goal point runs on beyond its end along
+its last segment (``PurePursuit(..., extend_end=True)``, ext.): the vehicle reaches a cusp
+along the path's tangent there, parallel to the street at the ends of the parking arcs. At the
+end of each piece the vehicle stops (the geometric mode of the parking planner: the wheels are
+re-oriented standing) and the next piece begins; the path is finished at the end of the last.
+The errors are measured against the postures' headings (left of the heading is > 0 forward
+and reverse alike), so they run on continuously through a cusp.
 
 It is the ``reversing_pure_pursuit`` law of the registry
 (:mod:`~robotica_ctrl.mobile.tracking_laws`) and of the ``path_tracker`` node, which reads the
@@ -91,7 +93,8 @@ class ReversingPurePursuit:
         self._pieces: list[tuple[PurePursuit, int]] = []
         for first, last in zip(bounds[:-1], bounds[1:]):   # steps first..last-1: points ..last
             path = PolylinePath(p[first:last + 1, :2])
-            self._pieces.append((PurePursuit(path, self.params), int(directions[first])))
+            self._pieces.append((PurePursuit(path, self.params, extend_end=True),
+                                 int(directions[first])))
         self._index = 0
 
     @property
