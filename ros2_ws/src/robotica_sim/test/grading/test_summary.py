@@ -5,6 +5,9 @@ The bag holds the 2 m figure eight as ``/path`` and a ground truth 0.1 m to its 
 1 mm behind the crossing (where the path's end and start meet): the line must give RMS and
 final cross-track 0.100 m, the offset written into the bag (a projection onto the whole path
 followed the other lobe and gave 1.234 m), and agree with ``robotica grade``'s metric.
+
+Arm bags written message by message with some per-step messages left out: the summary names
+each short topic with its count (``missing``, ``RECORDING INCOMPLETE`` in the line).
 """
 import math
 
@@ -135,3 +138,140 @@ def test_a_run_that_recorded_only_rosout_is_summarised(tmp_path):
     summary = summarize_bag(path)
     assert (summary.duration, summary.steps, summary.message_count) == (0.0, 0, 1)
     assert summary.rms_cross_track is None and summary.rms_joint_error is None
+
+
+# -- a recording that lost messages says so -------------------------------------------------
+# A 1 kHz lockstep arm run of STEPS steps, written here message by message: the simulator's
+# /clock and /joint_states and the controller's answers (/joint_torques, ~/controller_state)
+# once per step, step 0 included (steps + 1 each, as a real ej8_2 bag holds: 20 001 of every
+# one for 20 000 steps). Each test drops or repeats messages and states the count it expects.
+STEPS, ARM_DT = 200, 0.001
+CONTROLLER_STATE = '/joint_controller/controller_state'
+
+
+def arm_bag(path, *, pacing='lockstep', drop=None, repeats=0, timeouts=0,
+            controller_started_by='robotica', law_state=True):
+    """
+    Write the arm run's bag to ``path``; return it.
+
+    ``drop``: topic -> the steps whose message is left out; ``repeats``: copies of step 0 that
+    a lockstep simulator publishes again before the first answer (and the controller answers);
+    ``timeouts``: the status's lockstep timeouts; ``law_state``: whether the controller
+    publishes ~/controller_state (a task-space law does not).
+    """
+    drop = drop or {}
+    store = jazzy_typestore()
+    for msgtype in ('robotica_msgs/msg/SimulatorStatus', 'robotica_msgs/msg/JointControllerState'):
+        ensure_type(store, msgtype)
+    types = store.types
+    writer = Writer(path, version=9, storage_plugin=StoragePlugin.MCAP)
+    writer.open()
+    writer.set_custom_data('robotica.run.yaml', (
+        f'scenario: ej8_4\npacing: {pacing}\nduration: {STEPS * ARM_DT}\nnodes:\n'
+        f'- {{name: simulator, started_by: robotica}}\n'
+        f'- {{name: joint_controller, started_by: {controller_started_by}}}\n'))
+    topics = {'/clock': 'rosgraph_msgs/msg/Clock', '/joint_states': 'sensor_msgs/msg/JointState',
+              '/joint_torques': 'std_msgs/msg/Float64MultiArray',
+              CONTROLLER_STATE: 'robotica_msgs/msg/JointControllerState',
+              '/simulator/status': 'robotica_msgs/msg/SimulatorStatus'}
+    connections = {topic: writer.add_connection(topic, msgtype, typestore=store)
+                   for topic, msgtype in topics.items()}
+
+    def write(topic, k, t, msg):
+        if k not in drop.get(topic, ()):
+            writer.write(connections[topic], round(t * 1e9),
+                         store.serialize_cdr(msg, topics[topic]))
+
+    for k in [0] * repeats + list(range(STEPS + 1)):
+        t = k * ARM_DT
+        write('/joint_states', k, t, types['sensor_msgs/msg/JointState'](
+            header=header(types, t), name=['q1', 'q2'], position=np.zeros(2),
+            velocity=np.zeros(2), effort=np.zeros(2)))
+        write('/clock', k, t, types['rosgraph_msgs/msg/Clock'](clock=stamp(types, t)))
+        if k >= STEPS + 1 - timeouts:   # the last steps went on without an answer
+            continue
+        write('/joint_torques', k, t, types['std_msgs/msg/Float64MultiArray'](
+            layout=types['std_msgs/msg/MultiArrayLayout'](dim=[], data_offset=0),
+            data=np.zeros(2)))
+        if law_state:
+            write(CONTROLLER_STATE, k, t, types['robotica_msgs/msg/JointControllerState'](
+                header=header(types, t), law='pid', joint_names=['q1', 'q2'],
+                reference_position=np.zeros(2), reference_velocity=np.zeros(2),
+                reference_acceleration=np.zeros(2), position_error=np.full(2, 0.01),
+                velocity_error=np.zeros(2), effort=np.zeros(2)))
+    write('/simulator/status', STEPS, STEPS * ARM_DT, types['robotica_msgs/msg/SimulatorStatus'](
+        header=header(types, STEPS * ARM_DT), step=STEPS, real_time_factor=2.0,
+        lockstep_timeouts=timeouts, stale_command_stops=0, finished=True, contacts=0,
+        time_in_contact=0.0))
+    writer.close()
+    return path
+
+
+def test_a_complete_recording_lacks_nothing(tmp_path):
+    summary = summarize_bag(arm_bag(tmp_path / 'bag'))
+    assert summary.steps == STEPS and summary.missing == {}
+    assert 'INCOMPLETE' not in summary.line()
+    assert summary.as_dict()['missing'] == {}
+
+
+def test_lost_controller_states_are_named_with_their_count(tmp_path):
+    # The ej8_4 failure: the recorder's keep-last queue of ~/controller_state overflowed.
+    lost = set(range(50, 58)) | {STEPS}
+    summary = summarize_bag(arm_bag(tmp_path / 'bag', drop={CONTROLLER_STATE: lost}))
+    assert summary.missing == {CONTROLLER_STATE: 9}
+    assert summary.line().endswith(
+        f'; RECORDING INCOMPLETE: {CONTROLLER_STATE} 192 of 201 steps (the recorder fell '
+        'behind)')
+    assert summary.as_dict()['missing'] == {CONTROLLER_STATE: 9}
+
+
+def test_every_topic_short_of_messages_is_named(tmp_path):
+    summary = summarize_bag(arm_bag(tmp_path / 'bag', drop={
+        '/clock': {3}, '/joint_states': {0, 1}, '/joint_torques': {7, 8, 9}}))
+    assert summary.missing == {'/clock': 1, '/joint_states': 2, '/joint_torques': 3}
+    assert ('/clock 200 of 201 steps, /joint_states 199 of 201 steps, /joint_torques 198 of '
+            '201 steps') in summary.line()
+
+
+def test_step_0_published_again_before_the_first_answer_hides_no_lost_state(tmp_path):
+    # 3 more copies of step 0 (the controller's state stamped 0 s each time): 204 messages on
+    # every topic; 2 states lost leave 202 messages but 199 distinct steps.
+    summary = summarize_bag(arm_bag(tmp_path / 'bag', repeats=3,
+                                    drop={CONTROLLER_STATE: {10, 20}}))
+    assert summary.missing == {CONTROLLER_STATE: 2}
+
+
+def test_steps_that_went_on_without_an_answer_are_not_losses(tmp_path):
+    summary = summarize_bag(arm_bag(tmp_path / 'bag', timeouts=4))
+    assert (summary.lockstep_timeouts, summary.missing) == (4, {})
+    summary = summarize_bag(arm_bag(tmp_path / 'lost', timeouts=4,
+                                    drop={CONTROLLER_STATE: {5}}))
+    assert summary.missing == {CONTROLLER_STATE: 1}
+    assert f'{CONTROLLER_STATE} 196 of 197 answered steps' in summary.line()
+
+
+def test_answers_are_counted_only_in_lockstep(tmp_path):
+    # In real time a controller may skip states; the simulator's own topics still count.
+    summary = summarize_bag(arm_bag(tmp_path / 'bag', pacing='realtime',
+                                    drop={CONTROLLER_STATE: {5, 6}, '/joint_torques': {5}}))
+    assert summary.missing == {}
+    summary = summarize_bag(arm_bag(tmp_path / 'sim', pacing='realtime',
+                                    drop={'/joint_states': {5}}))
+    assert summary.missing == {'/joint_states': 1}
+
+
+def test_a_users_controller_is_held_to_its_torques_only(tmp_path):
+    # Its ~/controller_state is optional (docs/your_node.md): not one per state.
+    summary = summarize_bag(arm_bag(tmp_path / 'bag', controller_started_by='user',
+                                    drop={CONTROLLER_STATE: {5}, '/joint_torques': {6}}))
+    assert summary.missing == {'/joint_torques': 1}
+
+
+def test_a_task_space_law_publishes_no_controller_state(tmp_path):
+    summary = summarize_bag(arm_bag(tmp_path / 'bag', law_state=False))
+    assert summary.missing == {}
+
+
+def test_the_figure_eight_bag_without_a_run_record_lacks_nothing(figure_eight_bag):
+    # Its ground truth and clock: one per step (999 steps, 1000 messages); no pacing recorded.
+    assert summarize_bag(figure_eight_bag[0]).missing == {}
