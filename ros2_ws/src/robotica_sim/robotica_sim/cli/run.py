@@ -5,7 +5,9 @@ Starts the recorder and the nodes of the scenario's plan (a mobile robot: path p
 emulators, odometry, path tracker and simulator; a manipulator: trajectory publisher, joint
 controller and arm simulator) with the scenario's parameters; waits until the recorder has
 matched every topic; starts the simulation; waits for its end time; stops every process (also
-on Ctrl-C or when a node dies) and prints the bag's path and a one-line summary.
+on Ctrl-C or when a node dies) and prints the bag's path and a one-line summary. A bag that
+lacks messages of the per-step topics (the recorder fell behind: ``RECORDING INCOMPLETE`` in
+the summary) is an error: exit code 1, the bag kept (docs/recording.md).
 """
 import argparse
 import json
@@ -31,7 +33,7 @@ from robotica_sim.bags.run_record import COMPLETED, record_end, ROBOTICA, USER
 from robotica_sim.cli.contract_watch import ContractWatch
 from robotica_sim.cli.options import domain_id, domain_warning, nonempty, path, real
 from robotica_sim.cli.view import add_host_port
-from robotica_sim.grading.summary import summarize_bag
+from robotica_sim.grading.summary import RunSummary, summarize_bag
 from robotica_sim.runs.plan import (external_roles, NodeSpec, optional_topics, plan_run,
                                     recorded_topics)
 from robotica_sim.runs.scenario import load_scenario, with_overrides
@@ -486,15 +488,33 @@ def main(args: argparse.Namespace) -> int:
         print(f'robotica run: cannot summarise the run: {err}; logs in {run_dir / "logs"}',
               file=sys.stderr)
         return code or 1
+    return _print_summary(args, scenario.name, bag, summary, faults, code,
+                          supervisor.log_path('view_relay'))
+
+
+def _print_summary(args: argparse.Namespace, name: str, bag: Path, summary: RunSummary,
+                   faults: dict[str, str], code: int, view_log: Path) -> int:
+    """
+    Print the bag's path and the run's summary (one line, or JSON); return the exit code.
+
+    A bag that lacks messages of per-step topics (``summary.missing``: the recorder fell
+    behind) did not record what ran: one error line on stderr, the bag kept, and exit code 1
+    unless the run already failed otherwise.
+    """
+    if summary.missing:
+        print(f'robotica run: error: the recording is incomplete: the bag lacks '
+              f'{sum(summary.missing.values())} messages of per-step topics (the recorder fell '
+              f'behind; an overloaded machine?); the bag is kept: {bag}', file=sys.stderr)
+        code = code or 1
     view = {'view': f'ws://{args.host}:{args.port}'} if args.view else {}
     if args.json:
         print(json.dumps({**summary.as_dict(), **view, 'faults': faults, 'exit_code': code}))
     else:
         print(f'bag: {bag}')
         if view:
-            print(f'view: relayed on {view["view"]} (log: {supervisor.log_path("view_relay")})')
-        print(f'{scenario.name}: {summary.line()}'
-              + ''.join(f'; node {name} {text}' for name, text in faults.items()))
+            print(f'view: relayed on {view["view"]} (log: {view_log})')
+        print(f'{name}: {summary.line()}'
+              + ''.join(f'; node {node} {text}' for node, text in faults.items()))
     return code
 
 
