@@ -12,7 +12,7 @@ files and the page are :mod:`robotica_sim.grading.report`'s. :func:`auto_robot_e
   ``robot_every`` s; in a run with a world, also the world, the range readings at intervals
   (:func:`laser_points`, :func:`range_beam`) and the contacts), ``tracking_errors``
   (cross-track and heading errors of the ground truth against ``/path`` by
-  :func:`robotica_sim.grading.metrics.path_errors`, the projection ``robotica grade`` uses,
+  :func:`robotica_sim.grading.metrics.truth_path_errors`, the projection ``robotica grade`` uses,
   beside the tracker's own ``/path_tracker/tracking_error``),
   ``commands``, ``estimation`` (``/odom`` minus truth with the ±3σ band of its covariance)
   and one figure per sensor, ``gyro``, ``compass``, ``gps``: the reading against the truth
@@ -36,11 +36,10 @@ from typing import Any, Optional, TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from robotica_ctrl.mobile.path import PolylinePath
 from robotica_kin.angles import wrap_to_pi
 from robotica_kin.geodetic import GeodeticOrigin
-from robotica_sim.grading.metrics import (max_abs, normal_fit, path_errors, reading_error,
-                                          rms)
+from robotica_sim.grading.metrics import (max_abs, MetricParams, normal_fit, reading_error,
+                                          rms, truth_path_errors)
 from robotica_sim.grading.series import (fixes_to_enu, RANGE_TOPIC, run_world, RunSeries,
                                          RunWorld, sensor_mounts, Series)
 
@@ -516,14 +515,15 @@ def tracking_errors(fig: 'Figure', run: RunSeries, window: float) -> str:
     """
     Draw the tracking errors, the truth's against ``/path`` and the tracker's; return the caption.
 
-    The truth's are :func:`~robotica_sim.grading.metrics.path_errors` with ``window`` [m], the
-    numbers ``robotica grade`` gives; the tracker publishes the errors of the pose it reads.
+    The truth's are :func:`~robotica_sim.grading.metrics.truth_path_errors` with ``window``
+    [m], the numbers ``robotica grade`` gives; the tracker publishes the errors of the pose it
+    reads.
     """
     truth, reported = run.truth, run.tracking_error
     true: dict[str, NDArray[np.float64]] = {}
     if truth is not None and len(truth) and run.path is not None and len(run.path) >= 2:
-        _, true['cross_track'], true['heading'] = path_errors(
-            PolylinePath(run.path), truth['x'], truth['y'], truth['theta'], window)
+        _, true['cross_track'], true['heading'], _ = truth_path_errors(
+            run, MetricParams(search_window=window))
     panels = [('cross_track', 'cross-track e_y [m]', 'm'), ('heading', 'heading e_θ [rad]', 'rad')]
     if reported is not None and 'along_track' in reported.columns and np.any(
             reported['along_track'] != 0.0):

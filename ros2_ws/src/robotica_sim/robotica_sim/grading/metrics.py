@@ -40,6 +40,7 @@ from robotica_sim.grading.series import RunSeries, Series, TOPICS
 __all__ = ['METRICS', 'MetricInfo', 'MetricParams', 'MetricValue', 'RunMetrics',
            'compute_metrics', 'contact_events', 'energy', 'max_abs', 'normal_fit', 'overshoot',
            'path_errors', 'pose_errors', 'reading_error', 'rms', 'segment_directions',
+           'truth_path_errors',
            'settling_time', 'total_variation', 'travel_stretches', 'travelled_length']
 
 MetricValue = float | bool | list[float | None] | None
@@ -360,6 +361,26 @@ def segment_directions(points: ArrayLike, headings: ArrayLike | None,
     return np.where(forward, 1, -1).astype(np.int8)
 
 
+def truth_path_errors(run: RunSeries, params: MetricParams | None = None
+                      ) -> tuple[NDArray[np.float64], NDArray[np.float64],
+                                 NDArray[np.float64], NDArray[np.int8] | None]:
+    """
+    Return :func:`path_errors` of the run's truth against its last ``/path``, and the directions.
+
+    The directions are :func:`segment_directions` of the path's orientations (None: the
+    tangent is the reference); ``params`` give the search window and the orientation tolerance.
+    The one place where grading, the summary line and the report's figure measure the truth.
+    """
+    chosen = params or MetricParams()
+    truth = run.truth
+    if truth is None or run.path is None or len(run.path) < 2:
+        raise ValueError('the run needs the truth and a /path of two points or more')
+    directions = segment_directions(run.path, run.path_headings, chosen.orientation_tolerance)
+    s, cross, heading = path_errors(PolylinePath(run.path), truth['x'], truth['y'],
+                                    truth['theta'], chosen.search_window, directions)
+    return s, cross, heading, directions
+
+
 def path_errors(path: PolylinePath, x: ArrayLike, y: ArrayLike, theta: ArrayLike,
                 window: float, directions: ArrayLike | None = None
                 ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
@@ -634,10 +655,7 @@ def _mobile(run: RunSeries, params: MetricParams, out: RunMetrics) -> None:
         _final_pose(run, truth, out)
     if truth is not None and run.path is not None and len(run.path) >= 2:
         path = PolylinePath(run.path)
-        directions = segment_directions(run.path, run.path_headings,
-                                        params.orientation_tolerance)
-        s, cross, heading = path_errors(path, truth['x'], truth['y'], truth['theta'],
-                                        params.search_window, directions)
+        s, cross, heading, directions = truth_path_errors(run, params)
         if directions is not None and np.any(directions < 0):
             reverse = f'{np.count_nonzero(directions < 0)} of {len(directions)} segments'
             for name in ('rms_heading_error', 'max_heading_error'):

@@ -6,7 +6,7 @@ one projection and RMS of :mod:`robotica_sim.grading.metrics`, so that the line 
 prints and ``robotica grade`` agree: duration from ``/clock``; real-time factor and lockstep
 timeouts from the simulator's last ``~/status``; cross-track error of the ground truth
 (``/ground_truth/odom``) against the reference ``/path`` (signed positive to the left,
-:func:`~robotica_sim.grading.metrics.path_errors` with the default search window): the final
+:func:`~robotica_sim.grading.metrics.truth_path_errors` with the default search window): the final
 one and the RMS over the run. For a manipulator run, the joint position errors ``e = q_d - q``
 of the joint controller's ``~/controller_state``: per joint, the RMS over the run and the
 largest magnitude over its last quarter (the steady state of the book's ch. 8 examples). For
@@ -33,9 +33,8 @@ from typing import Optional
 
 import numpy as np
 from numpy.typing import NDArray
-from robotica_ctrl.mobile.path import PolylinePath
 from robotica_sim.bags.run_record import ROBOTICA
-from robotica_sim.grading.metrics import MetricParams, path_errors, rms
+from robotica_sim.grading.metrics import rms, truth_path_errors
 from robotica_sim.grading.series import load_run, RunSeries, TOPICS
 
 __all__ = ['ANSWER_TOPICS', 'RunSummary', 'STEP_TOPICS', 'expected_messages',
@@ -127,8 +126,7 @@ def summarize_bag(bag: Path) -> RunSummary:
     final = rms_cross = None
     truth = run.truth
     if run.path is not None and len(run.path) >= 2 and truth is not None and len(truth):
-        _, cross, _ = path_errors(PolylinePath(run.path), truth['x'], truth['y'],
-                                  truth['theta'], MetricParams().search_window)
+        _, cross, _, _ = truth_path_errors(run)
         final, rms_cross = float(cross[-1]), rms(cross)
     rms_joint = late_joint = None
     controller = run.controller
