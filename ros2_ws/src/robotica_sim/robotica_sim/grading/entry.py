@@ -16,13 +16,14 @@ from robotica_sim.bags.run_record import RunRecord
 from robotica_sim.grading.metrics import compute_metrics, METRICS
 from robotica_sim.grading.rubric import Bound, check_metrics, Rubric
 from robotica_sim.grading.series import load_run, TOPICS
+from robotica_sim.grading.summary import incomplete_text, missing_messages
 
 __all__ = ['GRADED_TOPICS', 'format_entry', 'format_value', 'grade_bag', 'json_value', 'table']
 
 # Topics the metrics read (the sensors are left out: only `robotica report` plots them).
 GRADED_TOPICS = tuple(TOPICS[role] for role in (
     'clock', 'path', 'truth', 'odom', 'cmd_vel', 'vehicle_command', 'tracking_error',
-    'joint_states', 'controller', 'trajectory', 'torques', 'bumper'))
+    'joint_states', 'controller', 'trajectory', 'torques', 'bumper', 'status'))
 
 
 def json_value(value: Any) -> Any:
@@ -48,6 +49,7 @@ def grade_bag(bag: Path, rubric: Optional[Rubric]) -> dict:
     """
     start = time.perf_counter()
     entry: dict[str, Any] = {'bag': str(bag), 'scenario': None, 'run': None, 'status': 'error',
+                             'incomplete': '',
                              'error': None, 'metrics': {}, 'units': {}, 'notes': {},
                              'absent': {}, 'joint_names': [], 'checks': [], 'failed': []}
     try:
@@ -59,6 +61,9 @@ def grade_bag(bag: Path, rubric: Optional[Rubric]) -> dict:
     except Exception as err:   # a corrupt bag can fail anywhere in decoding: report it
         entry['error'] = f'{bag}: cannot grade the bag: {type(err).__name__}: {err}'
         return entry
+    missing = missing_messages(run)
+    entry['incomplete'] = ('' if run.status is None else incomplete_text(
+        missing, int(run.status['step']), int(run.status['lockstep_timeouts'])))
     entry.update(scenario=run.scenario_name, run=_run_entry(run.run),
                  joint_names=list(metrics.joint_names),
                  metrics={k: json_value(v) for k, v in metrics.values.items()},
@@ -129,6 +134,8 @@ def format_entry(entry: dict) -> str:
     lines = [f'bag: {entry["bag"]}' + (f' (scenario {entry["scenario"]})'
                                        if entry['scenario'] else '')]
     lines += [line for line in [_run_line(entry.get('run'))] if line]
+    if entry.get('incomplete'):   # the metrics measure what was recorded, not what ran
+        lines.append(f'warning: the recording is incomplete: {entry["incomplete"]}')
     if entry['checks']:
         rows = []
         for check in entry['checks']:

@@ -38,7 +38,7 @@ from robotica_sim.grading.metrics import rms, truth_path_errors
 from robotica_sim.grading.series import load_run, RunSeries, TOPICS
 
 __all__ = ['ANSWER_TOPICS', 'RunSummary', 'STEP_TOPICS', 'expected_messages',
-           'missing_messages', 'summarize_bag']
+           'incomplete_text', 'missing_messages', 'summarize_bag']
 
 STEP_TOPICS = tuple(TOPICS[role] for role in ('clock', 'joint_states', 'truth', 'bumper'))
 """The simulator's topics, one message per step in either pacing (those the bag has)."""
@@ -74,14 +74,8 @@ class RunSummary:
 
     def _incomplete(self) -> str:
         """Return the line's end that names the topics the bag lacks messages of, or ''."""
-        if not self.missing:
-            return ''
-        parts = []
-        for topic, lacking in self.missing.items():
-            expected = expected_messages(topic, self.steps, self.lockstep_timeouts)
-            what = 'steps' if expected == self.steps + 1 else 'answered steps'
-            parts.append(f'{topic} {expected - lacking} of {expected} {what}')
-        return f'; RECORDING INCOMPLETE: {", ".join(parts)} (the recorder fell behind)'
+        text = incomplete_text(self.missing, self.steps, self.lockstep_timeouts)
+        return f'; RECORDING INCOMPLETE: {text}' if text else ''
 
     def _numbers(self) -> str:
         """Return the line without its end."""
@@ -158,6 +152,21 @@ def expected_messages(topic: str, steps: int, lockstep_timeouts: int) -> int:
 
     """
     return steps + 1 - (lockstep_timeouts if topic in ANSWER_TOPICS else 0)
+
+
+def incomplete_text(missing: dict[str, int], steps: int, lockstep_timeouts: int) -> str:
+    """
+    Return what a bag lacks (:func:`missing_messages`) in words, '' when it lacks nothing.
+
+    >>> incomplete_text({'/clock': 2}, 10, 0)
+    '/clock 9 of 11 steps (the recorder fell behind)'
+    """
+    parts = []
+    for topic, lacking in missing.items():
+        expected = expected_messages(topic, steps, lockstep_timeouts)
+        what = 'steps' if expected == steps + 1 else 'answered steps'
+        parts.append(f'{topic} {expected - lacking} of {expected} {what}')
+    return f'{", ".join(parts)} (the recorder fell behind)' if parts else ''
 
 
 def missing_messages(run: RunSeries) -> dict[str, int]:

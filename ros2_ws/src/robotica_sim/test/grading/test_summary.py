@@ -275,3 +275,14 @@ def test_a_task_space_law_publishes_no_controller_state(tmp_path):
 def test_the_figure_eight_bag_without_a_run_record_lacks_nothing(figure_eight_bag):
     # Its ground truth and clock: one per step (999 steps, 1000 messages); no pacing recorded.
     assert summarize_bag(figure_eight_bag[0]).missing == {}
+
+
+def test_grading_an_incomplete_recording_says_so(tmp_path):
+    from robotica_sim.grading.entry import format_entry, grade_bag
+    entry = grade_bag(arm_bag(tmp_path / 'short', drop={CONTROLLER_STATE: {5, 6}}), None)
+    assert entry['incomplete'] == (f'{CONTROLLER_STATE} 199 of 201 steps (the recorder fell '
+                                   'behind)')
+    assert f'warning: the recording is incomplete: {CONTROLLER_STATE} 199 of 201' in \
+        format_entry(entry)
+    complete = grade_bag(arm_bag(tmp_path / 'full'), None)
+    assert complete['incomplete'] == '' and 'warning' not in format_entry(complete)
