@@ -30,7 +30,9 @@ angle of its curvature, α = atan(l ω / v) (book (4.119), (4.121)), l = ``wheel
 keeps its sign in reverse (v < 0: the bicycle's θ' = v tan α / l is the law's ω).
 
 With ``control_rate`` = 0 the law runs once per pose message (what a lockstep simulation needs:
-every step is answered exactly once); with ``control_rate`` > 0 it runs on a timer from the
+every step is answered exactly once; with ``wait_for_path``, which ``robotica run`` sets, none
+before the first message on ``~/path``, so that a path delivered a few steps late does not
+leave the robot standing for them); with ``control_rate`` > 0 it runs on a timer from the
 newest pose and brakes when that pose is older than ``pose_timeout``. The node commands a stop
 and says why when: there is no path yet (for every law, ``open_loop`` too; a refused path keeps
 the previous one), the path is finished, the robot is farther than ``max_cross_track`` from the
@@ -96,6 +98,11 @@ class PathTrackerNode(GuardedNode):
                                 'stamped with its pose), else Twist', read_only=True)
         self._base_frame = declare(self, 'base_frame_id', 'base_link',
                                    'Frame of a stamped cmd_vel: the robot body', read_only=True)
+        self._wait_for_path = declare(
+            self, 'wait_for_path', False, 'Answer no pose before the first message on ~/path '
+            '(a path, or an empty one that cancels): a lockstep simulator repeats its first step '
+            'meanwhile; false: command a stop meanwhile', read_only=True)
+        self._path_seen = False
         self._stamp = Time()   # of the pose last answered: a stop answers it again
         if self._command_type == 'twist':
             self._cmd_pub = self.create_publisher(TwistStamped if self._stamped else Twist,
@@ -140,6 +147,7 @@ class PathTrackerNode(GuardedNode):
 
     # -- inputs ------------------------------------------------------------------------------
     def _on_path(self, msg: Path) -> None:
+        self._path_seen = True
         if not msg.poses and msg.header.frame_id:   # a planner with no path cancels: stop
             self._law = None
             self._reported.clear()
@@ -164,6 +172,10 @@ class PathTrackerNode(GuardedNode):
 
     def _on_odom(self, msg: Odometry) -> None:
         self._pose_msg = msg
+        if self._wait_for_path and not self._path_seen:
+            self.get_logger().info('waiting for a path on ~/path: pose not answered',
+                                   throttle_duration_sec=1.0)
+            return
         if self._control_rate == 0.0:
             self._control(msg)
 

@@ -60,6 +60,26 @@ def test_no_path_means_stop(tracker, publish, read_output):
     assert 'no path' in read_output(proc)
 
 
+def test_waiting_for_a_path_answers_no_pose_until_one_comes(start_node, ros_node, spin, publish,
+                                                            read_output):
+    # What robotica run sets: in lockstep the simulator repeats its first step meanwhile, so a
+    # path delivered late does not leave the robot standing for the steps it missed.
+    node, executor = ros_node
+    proc = start_node('robotica_ctrl', 'path_tracker', '-r', '/path_tracker/path:=/path',
+                      '-p', 'wait_for_path:=true')
+    cmds = []
+    node.create_subscription(Twist, 'cmd_vel', cmds.append, QOS)
+    odom = node.create_publisher(Odometry, 'odom', QOS)
+    path = node.create_publisher(Path, '/path', LATCHED)
+    assert spin(executor, lambda: odom.get_subscription_count() > 0 and
+                path.get_subscription_count() > 0 and node.count_publishers('cmd_vel') > 0)
+    assert publish(executor, odom, _odom(0.0, 0.5, 0.0),
+                   lambda: 'waiting for a path on ~/path: pose not answered' in read_output(proc))
+    assert cmds == []                                  # no pose answered, not even a stop
+    path.publish(_straight_path())
+    assert publish(executor, odom, _odom(0.0, 0.5, 0.0), lambda: cmds and cmds[-1].linear.x > 0)
+
+
 def test_turns_towards_the_path(tracker, publish, spin):
     proc, node, executor, odom, path, cmds, errors = tracker
     path.publish(_straight_path())

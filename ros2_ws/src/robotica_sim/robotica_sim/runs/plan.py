@@ -1050,7 +1050,7 @@ def _plan_mobile(scenario: Scenario) -> list[NodeSpec]:
         NodeSpec('robotica_sim', 'odometry', 'odometry', estimator),
         _navigator(scenario) if scenario.navigator.behaviour else
         NodeSpec('robotica_ctrl', 'path_tracker', 'path_tracker',
-                 {'law': scenario.tracker.law, **gains,
+                 {'law': scenario.tracker.law, **gains, 'wait_for_path': True,
                   'command_type': 'steering' if steered else 'twist',
                   'wheelbase': robot.wheelbase, 'enable_stamped_cmd_vel': STAMPED_CMD_VEL},
                  remappings={'/path_tracker/path': '/path'}),

@@ -76,9 +76,9 @@ def test_demo_parameters(demo, demo_plan):
                        'pure_pursuit.desired_linear_velocity': 0.5,
                        'pure_pursuit.max_angular_velocity': 1.5,
                        'command_type': 'twist', 'wheelbase': 0.5,
-                       'enable_stamped_cmd_vel': False}
+                       'enable_stamped_cmd_vel': False, 'wait_for_path': True}
     assert all(type(v) is float for k, v in tracker.items()
-               if k not in ('law', 'command_type', 'enable_stamped_cmd_vel'))
+               if k not in ('law', 'command_type', 'enable_stamped_cmd_vel', 'wait_for_path'))
     assert simulator['enable_stamped_cmd_vel'] is False   # one value for both ends of cmd_vel
 
 
