@@ -39,18 +39,24 @@ def _straight_path():
     return path_message(np.column_stack([0.1 * np.arange(101), np.zeros(101)]), 'odom')
 
 
-@pytest.fixture
-def tracker(start_node, ros_node, spin):
+def _start_tracker(start_node, ros_node, spin, *params, command=Twist):
+    """Start a path tracker with ``params`` (-p ...); return it and the test's ends."""
     node, executor = ros_node
-    proc = start_node('robotica_ctrl', 'path_tracker', '-r', '/path_tracker/path:=/path')
+    proc = start_node('robotica_ctrl', 'path_tracker', '-r', '/path_tracker/path:=/path',
+                      *params)
     cmds, errors = [], []
-    node.create_subscription(Twist, 'cmd_vel', cmds.append, QOS)
+    node.create_subscription(command, 'cmd_vel', cmds.append, QOS)
     node.create_subscription(TrackingError, '/path_tracker/tracking_error', errors.append, QOS)
     odom = node.create_publisher(Odometry, 'odom', QOS)
     path = node.create_publisher(Path, '/path', LATCHED)
     assert spin(executor, lambda: odom.get_subscription_count() > 0 and
                 path.get_subscription_count() > 0 and node.count_publishers('cmd_vel') > 0)
     return proc, node, executor, odom, path, cmds, errors
+
+
+@pytest.fixture
+def tracker(start_node, ros_node, spin):
+    return _start_tracker(start_node, ros_node, spin)
 
 
 def test_no_path_means_stop(tracker, publish, read_output):
@@ -64,15 +70,8 @@ def test_waiting_for_a_path_answers_no_pose_until_one_comes(start_node, ros_node
                                                             read_output):
     # What robotica run sets: in lockstep the simulator repeats its first step meanwhile, so a
     # path delivered late does not leave the robot standing for the steps it missed.
-    node, executor = ros_node
-    proc = start_node('robotica_ctrl', 'path_tracker', '-r', '/path_tracker/path:=/path',
-                      '-p', 'wait_for_path:=true')
-    cmds = []
-    node.create_subscription(Twist, 'cmd_vel', cmds.append, QOS)
-    odom = node.create_publisher(Odometry, 'odom', QOS)
-    path = node.create_publisher(Path, '/path', LATCHED)
-    assert spin(executor, lambda: odom.get_subscription_count() > 0 and
-                path.get_subscription_count() > 0 and node.count_publishers('cmd_vel') > 0)
+    proc, node, executor, odom, path, cmds, _ = _start_tracker(
+        start_node, ros_node, spin, '-p', 'wait_for_path:=true')
     assert publish(executor, odom, _odom(0.0, 0.5, 0.0),
                    lambda: 'waiting for a path on ~/path: pose not answered' in read_output(proc))
     assert cmds == []                                  # no pose answered, not even a stop
@@ -120,15 +119,8 @@ def test_nan_pose_and_wrong_frame_stop(tracker, publish, read_output):
 def test_stamped_commands_carry_the_pose_stamp_and_base_link(start_node, ros_node, spin, publish):
     # enable_stamped_cmd_vel: the same command as a Twist (left of the path: turn right), as a
     # TwistStamped in base_link stamped with the pose it answers (t = 3.25 s).
-    node, executor = ros_node
-    start_node('robotica_ctrl', 'path_tracker', '-r', '/path_tracker/path:=/path',
-               '-p', 'enable_stamped_cmd_vel:=true')
-    cmds = []
-    node.create_subscription(TwistStamped, 'cmd_vel', cmds.append, QOS)
-    odom = node.create_publisher(Odometry, 'odom', QOS)
-    path = node.create_publisher(Path, '/path', LATCHED)
-    assert spin(executor, lambda: odom.get_subscription_count() > 0 and
-                path.get_subscription_count() > 0 and node.count_publishers('cmd_vel') > 0)
+    _, node, executor, odom, path, cmds, _ = _start_tracker(
+        start_node, ros_node, spin, '-p', 'enable_stamped_cmd_vel:=true', command=TwistStamped)
     [info] = node.get_publishers_info_by_topic('/cmd_vel')
     assert info.topic_type == 'geometry_msgs/msg/TwistStamped'
     path.publish(_straight_path())
