@@ -180,10 +180,10 @@ class ParkingMode:
         passing = self._search.start(self._pose)
         self._last_reading = -math.inf
         self._state = 'searching'
-        self._publish(PlanResult(passing, self._search.params.pass_length, '', 0),
-                      path_message(passing, self._frame), 0.0, [])
         text = (f'searching for a space along a pass of {self._search.params.pass_length:g} m '
                 f'from ({self._pose[0]:.3f}, {self._pose[1]:.3f}) m')
+        # The pass is driven, but it is no parking plan: the status says found false, searching.
+        self._publish(PlanResult.none(text), path_message(passing, self._frame), 0.0, [])
         self._node.get_logger().info(text)
         return text
 

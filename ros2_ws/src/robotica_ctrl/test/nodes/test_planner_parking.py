@@ -146,8 +146,11 @@ def test_a_pass_without_a_space_ends_with_the_reason(start_node, ros_node, spin,
                'parking.autostart:=true')
     statuses = []
     node.create_subscription(PlanStatus, '/planner/status', statuses.append, LATCHED)
-    assert _drive(node, executor, spin, lambda: statuses and not statuses[-1].found,
+    assert _drive(node, executor, spin, lambda: statuses and 'no space' in statuses[-1].reason,
                   x_end=2.0)
+    assert not statuses[-1].found
+    assert any('searching for a space along a pass of 3 m' in s.reason and not s.found
+               for s in statuses)                        # the pass is no parking plan
     assert 'no space to park in was found along the pass of 3 m' in statuses[-1].reason
 
 
