@@ -20,12 +20,19 @@ Crash safety: what was received is written to disk every ``flush_period`` s; aft
 Service ``~/ready`` (std_srvs/Trigger) answers success once every requested topic (but those of
 ``optional_topics``) is subscribed and matched to a publisher. Topic ``~/progress``
 (std_msgs/Header) carries, every ``progress_period`` s of wall clock while it advances, the
-newest ``/clock`` time recorded: a
-lockstep simulator follows it (``lockstep.follow_topics``), so that a run never outruns its
-recording. Without that, a 1 kHz arm run on two cores shared with other work outran the
-recorder by more than its subscription depth, and DDS silently dropped 314 of 10 001 joint
-states before they reached it. On SIGINT/SIGTERM the node drains what DDS already delivered, then
-closes the bag.
+oldest of the newest stamps written on the ``progress_topics`` (``/clock``: its clock; any other:
+the stamp its message opens with, a std_msgs/Header's): a lockstep simulator follows it
+(``lockstep.follow_topics``), so that a run never outruns its recording. Without that, a 1 kHz
+arm run on two cores shared with other work outran the recorder by more than its subscription
+depth, and DDS silently dropped 314 of 10 001 joint states before they reached it. Progress on
+``/clock`` alone was not enough: the recorder reads each topic on its own, and in a 1 kHz run on
+an overloaded machine its ``/clock`` reader was up to date while its controller_state reader
+lagged by more than the writer's history (keep last 500), which lost 514 of 20 001 messages; so
+``robotica run`` lists every per-step topic of the run that is certain to be published. Until
+each of them has been written once, nothing is published (a listed topic that never came would
+hold the simulator back, each step by up to its ``lockstep.timeout``); so a progress topic that
+is not one of ``topics`` (when given) or is optional is left out (with a warning; none left: no
+progress). On SIGINT/SIGTERM the node drains what DDS already delivered, then closes the bag.
 """
 from pathlib import Path
 import shutil
@@ -56,6 +63,23 @@ SUBSCRIPTION_DEPTH = 1000   # messages a topic may fall behind before DDS drops 
 QUIET_PERIOD = 0.3   # [s] wall clock without messages that ends the drain at shutdown
 DRAIN_LIMIT = 5.0    # [s] wall clock, the longest drain
 UNKNOWN_NODE = '_NODE_NAME_UNKNOWN_'   # rmw's name of a publisher whose node is not known yet
+
+
+def split_progress_topics(progress_topics: list[str], topics: list[str], optional: set[str]
+                          ) -> tuple[tuple[str, ...], tuple[str, ...]]:
+    """
+    Return the progress topics kept and those left out (not recorded, or optional).
+
+    A topic kept must be recorded (one of ``topics`` when that is given) and certain to come
+    (not ``optional``: one that never came would hold a lockstep run back), since no progress is
+    published until every topic kept has been written once.
+
+    >>> split_progress_topics(['/clock', '/x', '/y'], ['/clock', '/x'], {'/x'})
+    (('/clock',), ('/x', '/y'))
+    """
+    listed = tuple(dict.fromkeys(t for t in progress_topics if t))
+    kept = tuple(t for t in listed if (not topics or t in topics) and t not in optional)
+    return kept, tuple(t for t in listed if t not in kept)
 
 
 class RecorderNode(GuardedNode):
@@ -93,8 +117,12 @@ class RecorderNode(GuardedNode):
                          'Period of the search for new topics [s, wall clock]',
                          low=0.01, high=10.0, read_only=True)
         progress_period = declare(self, 'progress_period', 0.05,
-                                  'Period of ~/progress, the newest /clock time recorded [s, '
-                                  'wall clock]', low=0.001, high=10.0, read_only=True)
+                                  'Period of ~/progress, how far progress_topics are recorded '
+                                  '[s, wall clock]', low=0.001, high=10.0, read_only=True)
+        progress_topics = declare(self, 'progress_topics', ['/clock'],
+                                  'Stamped topics (/clock, or messages opening with a '
+                                  'std_msgs/Header): ~/progress is the oldest of their newest '
+                                  'stamps written; [""]: none', read_only=True)
         if not output:
             raise ValueError('parameter output (the bag directory) is required')
         if compression not in COMPRESSION:
@@ -102,6 +130,8 @@ class RecorderNode(GuardedNode):
                              f'got {compression!r}')
         if Path(output).exists():
             raise ValueError(f'bag directory {output} exists already')
+        self._progress_topics, left_out = split_progress_topics(progress_topics, self._topics,
+                                                                self._optional)
         for f in files:
             if not Path(f).is_file():
                 raise ValueError(f'metadata file {f} does not exist')
@@ -125,10 +155,15 @@ class RecorderNode(GuardedNode):
         self._last_message = time.monotonic()
         self.create_service(Trigger, '~/ready', self._on_ready)
         self._progress_pub = self.create_publisher(Header, '~/progress', STREAM_PUB_QOS)
-        self._clock_recorded = self._progress_sent = -1.0   # [s] newest /clock recorded, sent
+        self._newest: dict[str, float] = {}   # progress topic -> newest stamp written [s]
+        self._progress_sent = -1.0   # [s]
         self.create_timer(progress_period, self._publish_progress, clock=wall)
         # Wall-clock timer: discovery goes on even before any /clock arrives.
         self.create_timer(period, self._discover, clock=wall)
+        if left_out:
+            self.get_logger().warn(f'progress_topics {list(left_out)} left out: not recorded or '
+                                   'optional' + ('' if self._progress_topics
+                                                 else '; no ~/progress'))
         self.get_logger().info(f'recording into {output}: '
                                f'{", ".join(self._topics) if self._topics else "all topics"}')
 
@@ -178,10 +213,10 @@ class RecorderNode(GuardedNode):
             self._count += 1
             self._last_message = time.monotonic()
 
-        def write_clock(data: bytes) -> None:
+        def write_stamped(data: bytes) -> None:
             write(data)
             try:   # the newest, not the largest: one stray stamp must not stick
-                self._clock_recorded = header_stamp(data)
+                self._newest[topic] = header_stamp(data)
             except (ValueError, IndexError, struct.error):   # malformed: recorded, not followed
                 pass
 
@@ -191,8 +226,8 @@ class RecorderNode(GuardedNode):
                                    'reached the recorder', throttle_duration_sec=1.0)
 
         self._recorded[topic] = self.create_subscription(
-            msg_class, topic, write_clock if topic == '/clock' else write, qos, raw=True,
-            event_callbacks=SubscriptionEventCallbacks(message_lost=lost))
+            msg_class, topic, write_stamped if topic in self._progress_topics else write, qos,
+            raw=True, event_callbacks=SubscriptionEventCallbacks(message_lost=lost))
         self.get_logger().info(f'recording {topic} [{msgtype}]')
 
     def _note_publishers(self, topic: str, publishers: list) -> None:
@@ -210,10 +245,13 @@ class RecorderNode(GuardedNode):
                 {t: sorted(n) for t, n in sorted(self._publishing_nodes.items())}))
 
     def _publish_progress(self) -> None:
-        """Publish the newest /clock time recorded, when it has changed."""
-        if self._clock_recorded != self._progress_sent and self._clock_recorded >= 0.0:
-            self._progress_sent = self._clock_recorded
-            self._progress_pub.publish(Header(stamp=seconds_to_stamp(self._clock_recorded)))
+        """Publish the oldest newest stamp of the progress topics, when it has changed."""
+        if not self._progress_topics or len(self._newest) < len(self._progress_topics):
+            return   # one not written yet: none
+        progress = min(self._newest.values())
+        if progress != self._progress_sent and progress >= 0.0:
+            self._progress_sent = progress
+            self._progress_pub.publish(Header(stamp=seconds_to_stamp(progress)))
 
     def _receive_time(self) -> int:
         """Return the receive time [ns]: simulated with use_sim_time, else the system clock."""
