@@ -35,7 +35,7 @@ from robotica_sim.cli.options import domain_id, domain_warning, nonempty, path, 
 from robotica_sim.cli.view import add_host_port
 from robotica_sim.grading.summary import RunSummary, summarize_bag
 from robotica_sim.runs.plan import (external_roles, NodeSpec, optional_topics, plan_run,
-                                    recorded_topics)
+                                    progress_topics, recorded_topics)
 from robotica_sim.runs.scenario import load_scenario, with_overrides
 from robotica_sim.runs.supervisor import child_environment, ProcessSupervisor
 from rosgraph_msgs.msg import Clock
@@ -168,6 +168,7 @@ def _prepare(args: argparse.Namespace, scenario, plan: list[NodeSpec],
     recorder = NodeSpec('robotica_sim', 'recorder', 'recorder', {
         'output': str(bag), 'topics': list(recorded_topics(scenario)),
         'optional_topics': list(optional_topics(scenario)) or [''],
+        'progress_topics': list(progress_topics(scenario)),
         'metadata_files': [str(scenario_copy), str(params_file), str(run_file)]})
     relay = NodeSpec('robotica_sim', 'view_relay', 'view_relay',
                      {'host': args.host, 'port': args.port}, use_sim_time=False)

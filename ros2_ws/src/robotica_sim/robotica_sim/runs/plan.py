@@ -58,7 +58,12 @@ PATH_SHAPES = ('straight_line', 'circle', 'rounded_rectangle', 'figure_eight', '
 MAX_PATH_POINTS = 200_000   # of a reference path (one nav_msgs/Path message)
 TRACKER_NODE_KEYS = ('pose_source', 'max_cross_track')   # tracker: keys that are not gains
 STATUS_TOPIC = '/simulator/status'
-RECORDER_PROGRESS_TOPIC = '/recorder/progress'   # the newest /clock recorded (std_msgs/Header)
+RECORDER_PROGRESS_TOPIC = '/recorder/progress'   # what it recorded (std_msgs/Header)
+MAX_LAG = 0.5   # [s] simulated, the longest a followed topic lags behind a lockstep simulator
+MAX_LAG_STEPS = 200
+"""Steps a followed topic may lag at most: well below the writers' history (keep last 500,
+robotica_kin.ros.qos), so that a reliable writer never overwrites what the recorder has not
+read."""
 TRACKING_ERROR_TOPIC = '/path_tracker/tracking_error'
 CONTROLLER_STATE_TOPIC = '/joint_controller/controller_state'
 TRAJECTORY_TOPIC = '/joint_controller/joint_trajectory'
@@ -258,8 +263,9 @@ def followed_topics(scenario: Scenario) -> tuple[str, ...]:
     Return the topics a lockstep simulator waits for (``lockstep.follow_topics``).
 
     They are the per-step outputs of the nodes off its control loop: the recorder's progress
-    (the recorder the caller adds is named ``recorder``), so that no run outruns its recording,
-    and for a vehicle the encoder, gyro and compass emulators and the odometry.
+    (the recorder the caller adds is named ``recorder``; how far it has written every topic of
+    :func:`progress_topics`), so that no run outruns its recording, and for a vehicle the
+    encoder, gyro and compass emulators and the odometry.
 
     The GPS emulator is not followed: its fixes come at a few hertz, late by their latency, and
     stop in dropouts; the odometry it feeds is followed.
@@ -274,6 +280,45 @@ def followed_topics(scenario: Scenario) -> tuple[str, ...]:
     if scenario.planner.method == 'parking':   # no driving on while it plans
         topics.append(PLANNER_PROGRESS_TOPIC)
     return tuple(topics)
+
+
+def progress_topics(scenario: Scenario) -> tuple[str, ...]:
+    """
+    Return the topics whose recording makes the recorder's progress (``progress_topics``).
+
+    In lockstep they are the run's per-step stamped topics that are certain to come every step,
+    so that the run waits for the slowest of the recorder's readers, not for its ``/clock``
+    alone: ``/clock``; an arm's ``/joint_states`` and, when the joint controller is robotica's
+    own, its answer's telemetry (``controller_state``, or a task-space law's
+    ``force_control`` / ``cartesian_control``); a vehicle's ground truth, wheel encoders, enabled
+    gyro and compass, and the odometry when it is robotica's own. A user's node is left out: a
+    topic that never came would hold the run back. In real time only ``/clock`` (the
+    recorder's default; nothing follows the progress).
+    """
+    if scenario.pacing != 'lockstep':
+        return ('/clock',)
+    if scenario.is_manipulator:
+        law = scenario.controller.law
+        telemetry = () if scenario.controller.external is not None else (
+            LAW_TOPICS[law] if law in TASK_LAWS else (CONTROLLER_STATE_TOPIC,))
+        return ('/clock', '/joint_states', *telemetry)
+    return ('/clock', '/ground_truth/odom', '/wheel_encoders',
+            *(t for sensor, t in (('gyro', '/imu/data'), ('compass', '/compass/heading'))
+              if getattr(scenario.sensors, sensor).enabled),
+            *(('/odom',) if scenario.odometry.external is None else ()))
+
+
+def lockstep_max_lag(step_period: float) -> float:
+    """
+    Return ``lockstep.max_lag`` [s] for steps of ``step_period`` [s]: ``MAX_LAG`` at most.
+
+    At most ``MAX_LAG_STEPS`` steps, so that no more than that many messages of a per-step topic
+    are in flight to the recorder (0.2 s at 1 kHz; 0.5 s at 50 Hz, as before).
+
+    >>> lockstep_max_lag(0.001), lockstep_max_lag(0.02)
+    (0.2, 0.5)
+    """
+    return min(MAX_LAG, round(MAX_LAG_STEPS * step_period, 9))
 
 
 def plan_run(scenario: Scenario) -> list[NodeSpec]:
@@ -479,6 +524,7 @@ def _plan_arm(scenario: Scenario) -> list[NodeSpec]:
     simulator = {**plant, 'gravity': _floats(arm.gravity), 'step_period': scenario.step_period,
                  'pacing': scenario.pacing, 'end_time': scenario.duration, 'autostart': False,
                  'lockstep.follow_topics': list(followed_topics(scenario)),
+                 'lockstep.max_lag': lockstep_max_lag(scenario.step_period),
                  'respect_limits': arm.respect_limits}
     for key in ('initial_positions', 'initial_velocities', 'tau_max', 'unmodelled_viscous'):
         if getattr(arm, key):
@@ -1018,6 +1064,7 @@ def _plan_mobile(scenario: Scenario) -> list[NodeSpec]:
                                                 'steering_time_constant', 'longitudinal_slip')},
         'step_period': scenario.step_period, 'pacing': scenario.pacing,
         'lockstep.follow_topics': list(followed_topics(scenario)),
+        'lockstep.max_lag': lockstep_max_lag(scenario.step_period),
         'end_time': scenario.duration, 'autostart': False, **pose}
     world = None
     if scenario.world and scenario.source:   # the obstacles it stops at: the scenario's own
