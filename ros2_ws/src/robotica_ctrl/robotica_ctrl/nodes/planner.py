@@ -14,7 +14,9 @@ and a goal, and again when the goal changes or a new map blocks the path it foll
 ``plan`` (nav_msgs/Path, transient local: a tracker's ``~/path``), empty when there is no path
 so that the tracker stops; ``~/status`` (robotica_msgs/PlanStatus, transient local: found or
 the reason, cost, expansions, whether the search's bound was hit, the time it took) and
-``~/markers`` (visualization_msgs/MarkerArray: the path, the cells A* expanded, start and goal).
+``~/markers`` (visualization_msgs/MarkerArray: the path, the cells A* expanded, the visibility
+graph or the Voronoi roadmap, the direction of a potential method's force on a lattice of
+``field_step``, the trap it stalled in, start and goal).
 Every search is bounded (``max_expansions``, ``max_seconds``): a plan never hangs the node.
 
 With ``method`` = ``parking`` it runs the course's parallel parking instead
@@ -211,6 +213,7 @@ class PlannerNode(GuardedNode):
             dots.color = ColorRGBA(r=0.3, g=0.5, b=1.0, a=0.3)
             dots.points = [Point(x=float(x), y=float(y)) for x, y in centres]
             markers.append(dots)
+        markers += _search_markers(result.details)
         for k, (point, color) in enumerate(((self._start, ColorRGBA(g=1.0, a=1.0)),
                                             (self._goal if self._parking is None
                                              else result.details.get('goal'),
@@ -225,6 +228,48 @@ class PlannerNode(GuardedNode):
             marker.header.frame_id = self._frame
             marker.header.stamp = stamp
         return MarkerArray(markers=markers)
+
+
+def _search_markers(details: dict) -> list[Marker]:
+    """
+    Return the markers of what the search built: the graph or roadmap, the force field, a trap.
+
+    The visibility graph's edges or the Voronoi roadmap's ridges (grey lines, id 4); the
+    direction of the resultant force of a potential method on its lattice (a short orange
+    segment from each lattice point, id 5); the local minimum a potential method stalled in
+    (a red sphere, id 6). At most :data:`MAX_EXPANDED_MARKERS` segments of each.
+    """
+    markers = []
+    edges = details.get('graph', details.get('roadmap'))
+    if edges is not None and len(edges):
+        lines = np.asarray(edges, dtype=float)[::max(1, len(edges) // MAX_EXPANDED_MARKERS)]
+        graph = Marker(ns='plan', id=4, type=Marker.LINE_LIST, action=Marker.ADD)
+        graph.scale.x = 0.01
+        graph.color = ColorRGBA(r=0.5, g=0.5, b=0.5, a=0.6)
+        graph.points = [Point(x=float(x), y=float(y)) for x, y in lines.reshape(-1, 2)]
+        markers.append(graph)
+    field = details.get('field')
+    if field is not None and len(field):
+        rows = np.asarray(field, dtype=float)
+        rows = rows[np.isfinite(rows[:, 2])][::max(1, len(rows) // MAX_EXPANDED_MARKERS)]
+        step = float(np.min(np.diff(np.unique(rows[:, 0])))) if len(
+            np.unique(rows[:, 0])) > 1 else 0.25
+        tips = rows[:, :2] + 0.7 * step * np.column_stack([np.cos(rows[:, 2]),
+                                                           np.sin(rows[:, 2])])
+        arrows = Marker(ns='plan', id=5, type=Marker.LINE_LIST, action=Marker.ADD)
+        arrows.scale.x = 0.015
+        arrows.color = ColorRGBA(r=1.0, g=0.55, b=0.0, a=0.8)
+        arrows.points = [Point(x=float(x), y=float(y))
+                         for x, y in np.hstack([rows[:, :2], tips]).reshape(-1, 2)]
+        markers.append(arrows)
+    trap = details.get('trap')
+    if trap is not None:
+        sphere = Marker(ns='plan', id=6, type=Marker.SPHERE, action=Marker.ADD,
+                        pose=_pose(*np.asarray(trap, dtype=float)[:2]),
+                        color=ColorRGBA(r=1.0, g=0.1, b=0.1, a=0.9))
+        sphere.scale.x = sphere.scale.y = sphere.scale.z = 0.3
+        markers.append(sphere)
+    return markers
 
 
 def main(args=None) -> None:

@@ -64,6 +64,9 @@ PLANNER_PARAMETERS: dict[str, ParameterSpec] = {
                                    0.0, 1e3),
     'max_sharpness': ParameterSpec(1.0, 'sigma_max [1/m^2], the largest change of curvature '
                                    'per metre of the clothoid turns', 1e-6, 1e6),
+    'field_step': ParameterSpec(0.25, 'potential, vff: lattice [m] on which the direction of '
+                                'the resultant force is drawn (details field, the markers); 0: '
+                                'none', 0.0, 100.0),
     'max_expansions': ParameterSpec(2_000_000, 'Bound on the nodes a search expands', 1,
                                     1_000_000_000),
     'max_seconds': ParameterSpec(5.0, 'Bound on the time of a search [s]', 1e-3, 3600.0),
@@ -133,7 +136,8 @@ def plan_path(world: World, start: ArrayLike, goal: ArrayLike,
         law = GeneralisedPotentialParams() if method == 'potential' else \
             VirtualForceFieldParams(repulsive_gain=0.02, window_radius=1.0)
         return potential_planner(world, start, goal, law,
-                                 PotentialPlannerParams(robot_radius=max(radius, 1e-3)),
+                                 PotentialPlannerParams(robot_radius=max(radius, 1e-3),
+                                                        field_step=float(o['field_step'])),
                                  budget, clock)
     else:
         grid = world_as_grid(world, o['resolution'])

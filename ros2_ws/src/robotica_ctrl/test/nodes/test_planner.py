@@ -183,3 +183,44 @@ def test_a_curvature_bound_gives_clothoid_turns(start_node, ros_node, spin, worl
     keep = (ab > 1e-6) & (bc > 1e-6) & (ca > 1e-6)
     curvature = 2.0 * cross[keep] / (ab * bc * ca)[keep]
     assert curvature.max() <= 5.0 * 1.05
+
+
+def _markers_by_id(node, executor, spin, start_node, world, method):
+    """Plan from (1, 1) to (3, 1) round the wall with ``method``; return its markers by id."""
+    from visualization_msgs.msg import MarkerArray
+    start_node('robotica_ctrl', 'planner', '-p', f'world_file:={world}', '-p',
+               'start:=[1.0, 1.0]', '-p', 'goal:=[3.0, 1.0]', '-p', 'robot_radius:=0.2',
+               '-p', f'method:={method}')
+    arrays = []
+    node.create_subscription(MarkerArray, '/planner/markers', arrays.append, LATCHED)
+    assert spin(executor, lambda: arrays)
+    return {m.id: m for m in arrays[-1].markers if m.ns == 'plan' and m.action == m.ADD}
+
+
+def test_the_visibility_graph_is_drawn_and_crosses_no_wall(start_node, ros_node, spin, world):
+    node, executor = ros_node
+    markers = _markers_by_id(node, executor, spin, start_node, world, 'visibility_graph')
+    edges = np.array([[p.x, p.y] for p in markers[4].points]).reshape(-1, 4)
+    assert len(edges) > 10
+    # An edge inside the room (the grown outer walls' vertices lie outside it, and so do the
+    # edges between them) that crosses the line x = 2 passes above the wall's free end (y = 3)
+    # plus r.
+    a, b = edges[:, :2], edges[:, 2:]
+    inside = np.all((edges >= 0.2 - 1e-9) & (edges <= 3.8 + 1e-9), axis=1)
+    crossing = inside & ((a[:, 0] - 2.0) * (b[:, 0] - 2.0) < 0.0)
+    y_at_wall = a[:, 1] + (b[:, 1] - a[:, 1]) * (2.0 - a[:, 0]) / (b[:, 0] - a[:, 0] + 1e-300)
+    assert crossing.any() and np.all(y_at_wall[crossing] >= 3.2 - 1e-6)
+
+
+def test_a_potential_field_and_its_trap_are_drawn(start_node, ros_node, spin, world):
+    # The wall between start and goal: the generalised potential stalls in front of it. The
+    # field is drawn on a 0.25 m lattice: segments of 0.7 x 0.25 m from lattice points.
+    node, executor = ros_node
+    markers = _markers_by_id(node, executor, spin, start_node, world, 'potential')
+    segments = np.array([[p.x, p.y] for p in markers[5].points]).reshape(-1, 4)
+    assert len(segments) > 50
+    lengths = np.hypot(segments[:, 2] - segments[:, 0], segments[:, 3] - segments[:, 1])
+    assert lengths == pytest.approx(0.175, abs=1e-9)
+    offsets = (segments[:, :2] - segments[0, :2]) / 0.25
+    assert np.allclose(offsets, np.round(offsets), atol=1e-9)
+    assert 6 in markers   # the trap: the plan ended in a local minimum or a collision
