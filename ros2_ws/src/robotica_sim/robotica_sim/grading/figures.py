@@ -104,6 +104,23 @@ def scan_every(duration: float, robot_every: float) -> float:
     return ROBOT_EVERY_STEPS[-1]
 
 
+def footprint_polygon(scenario: dict | None) -> NDArray[np.float64] | None:
+    """
+    Return the scenario's ``robot.footprint_polygon`` as (v, 2) [m] in base_link, else None.
+
+    >>> footprint_polygon({'robot': {'footprint_polygon': [0, 0, 1, 0, 1, 1]}}).shape
+    (3, 2)
+    >>> footprint_polygon({'robot': {}}) is None
+    True
+    """
+    values = ((scenario or {}).get('robot') or {}).get('footprint_polygon')
+    try:
+        polygon = np.asarray(values, dtype=np.float64).reshape(-1, 2)
+    except (TypeError, ValueError):
+        return None
+    return polygon if len(polygon) >= 3 and np.isfinite(polygon).all() else None
+
+
 def robot_poses(t: ArrayLike, x: ArrayLike, y: ArrayLike, theta: ArrayLike,
                 every: float) -> NDArray[np.float64]:
     """
@@ -471,7 +488,11 @@ def trajectory(fig: 'Figure', run: RunSeries, every: float) -> str:
         points = np.vstack(spans)
         size = ROBOT_SIZE * max(float(np.ptp(points[:, 0])), float(np.ptp(points[:, 1])), 0.2)
         poses = robot_poses(drawn.t, drawn['x'], drawn['y'], drawn['theta'], every)
-        body = size * np.array([[0.6, 0.0], [-0.4, 0.35], [-0.4, -0.35]])
+        outline = footprint_polygon(run.scenario)
+        body = size * np.array([[0.6, 0.0], [-0.4, 0.35], [-0.4, -0.35]]) if outline is None \
+            else outline
+        if outline is not None:   # the body at true scale, and where it ended
+            poses = np.vstack([poses, [drawn['x'][-1], drawn['y'][-1], drawn['theta'][-1]]])
         for k, (x, y, theta) in enumerate(poses):
             rotation = np.array([[math.cos(theta), -math.sin(theta)],
                                  [math.sin(theta), math.cos(theta)]])
@@ -482,7 +503,11 @@ def trajectory(fig: 'Figure', run: RunSeries, every: float) -> str:
                 label='start')
         source = 'true' if drawn is truth else '/odom'
         caption += (f' The robot is drawn as a triangle pointing along its heading at the '
-                    f'{source} pose every {every:g} s; the dot marks the start.')
+                    f'{source} pose every {every:g} s; the dot marks the start.'
+                    if outline is None else
+                    f' The robot is drawn as its body (robot.footprint_polygon, true scale) at '
+                    f'the {source} pose every {every:g} s and at the end; the dot marks the '
+                    'start.')
         if run.path is not None and run.path_times is not None and len(run.path_times) > 1:
             marks = robot_poses(drawn.t, drawn.t, drawn.t, drawn.t, every)[:, 0]
             reference = np.column_stack([

@@ -90,6 +90,24 @@ def test_trajectory_caption_names_the_robot_interval_and_the_final_error():
     assert numbers_after(text, 'Final position error of /odom:')[0] == pytest.approx(0.05)
 
 
+def test_a_robot_with_a_footprint_polygon_is_drawn_as_its_body_and_at_its_end():
+    # A 4.5 x 1.7 m car body about its rear axle, driven 10 m along x: drawn at true scale at
+    # 0, 2, ..., 10 s and once more at the end (the last drawn patch), where it stopped.
+    from matplotlib.patches import Polygon
+    truth = poses(T, T, np.zeros_like(T), np.zeros_like(T))
+    body = [-0.9, -0.85, 3.6, -0.85, 3.6, 0.85, -0.9, 0.85]
+    fig = Figure(figsize=figures.FIGURE_SIZE, dpi=figures.DPI)
+    text = figures.trajectory(fig, make_run(path=[[0.0, 0.0], [10.0, 0.0]], truth=truth,
+                                            scenario={'robot': {'footprint_polygon': body}}),
+                              2.0)
+    assert 'as its body (robot.footprint_polygon, true scale)' in text
+    patches = [p for p in fig.axes[0].patches if isinstance(p, Polygon)]
+    assert len(patches) == 7                         # six every 2 s and the end
+    corners = patches[-1].get_xy()[:4]
+    np.testing.assert_allclose(corners, [[T[-1] - 0.9, -0.85], [T[-1] + 3.6, -0.85],
+                                         [T[-1] + 3.6, 0.85], [T[-1] - 0.9, 0.85]], atol=1e-12)
+
+
 # --- tracking errors ----------------------------------------------------------------------
 
 def test_tracking_errors_of_the_truth_against_the_path_and_of_the_tracker():
