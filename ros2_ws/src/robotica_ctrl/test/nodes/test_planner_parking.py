@@ -94,8 +94,9 @@ def test_a_pass_finds_the_space_and_the_plan_parks_in_it(start_node, ros_node, s
     assert _drive(node, executor, spin, lambda: len(plans) >= 2 and statuses[-1].found
                   and statuses[-1].points > 100)
     passing = path_postures(plans[0])
-    assert passing[0] == pytest.approx([-2.0, LANE, 0.0], abs=0.05)   # the first pose's
-    assert passing[-1][:2] == pytest.approx([23.0, LANE], abs=0.05)   # 25 m straight on
+    start = passing[0]   # the first pose received (the first ones may go before matching)
+    assert -2.0 <= start[0] <= 0.0 and start[1:] == pytest.approx([LANE, 0.0])
+    assert passing[-1] == pytest.approx([start[0] + 25.0, LANE, 0.0])   # 25 m straight on
     plan = path_postures(plans[-1])
     steps = np.diff(plan[:, :2], axis=0)
     along = steps[:, 0] * np.cos(plan[:-1, 2]) + steps[:, 1] * np.sin(plan[:-1, 2])
