@@ -32,7 +32,7 @@ def test_progress_topics_not_recorded_or_optional_are_left_out():
 QOS = QoSProfile(depth=100, reliability=ReliabilityPolicy.RELIABLE)
 
 
-def recording(start_node, ros_node, call, out, topics: dict, progress_topics: str):
+def recording(start_node, ros_node, spin, call, out, topics: dict, progress_topics: str):
     """Record ``topics`` (name: type) once ready; return the recorder, publishers, progress."""
     node, executor = ros_node
     recorder = start_node('robotica_sim', 'recorder', '-p', f'output:={out}',
@@ -44,8 +44,15 @@ def recording(start_node, ros_node, call, out, topics: dict, progress_topics: st
     progress: list[float] = []
     node.create_subscription(Header, '/recorder/progress',
                              lambda m: progress.append(stamp_to_seconds(m.stamp)), QOS)
-    assert call(executor, node.create_client(Trigger, '/recorder/ready'),
-                Trigger.Request()).success
+    # Ready once it has found, subscribed and matched every topic (its discovery runs every
+    # 0.1 s, later under load): ask until it is.
+    ready = node.create_client(Trigger, '/recorder/ready')
+    for _ in range(100):
+        answer = call(executor, ready, Trigger.Request())
+        if answer is not None and answer.success:
+            break
+        spin(executor, lambda: False, timeout=0.1)
+    assert answer is not None and answer.success, answer
     return recorder, publishers, progress
 
 
@@ -56,8 +63,9 @@ def clock_at(t: float) -> Clock:
 @pytest.mark.ros
 def test_progress_follows_the_slower_topic(start_node, ros_node, spin, publish, call, tmp_path):
     _, executor = ros_node
-    _, publishers, progress = recording(start_node, ros_node, call, tmp_path / 'bag',
-                                        {'/clock': Clock, '/x': JointState}, "['/clock', '/x']")
+    _, publishers, progress = recording(start_node, ros_node, spin, call, tmp_path / 'bag',
+                                        {'/clock': Clock, '/x': JointState},
+                                        "['/clock', '/x']")
     clock, x = publishers['/clock'], publishers['/x']
 
     def stamped(t: float) -> JointState:
@@ -78,10 +86,11 @@ def test_progress_follows_the_slower_topic(start_node, ros_node, spin, publish, 
 
 
 @pytest.mark.ros
-def test_an_unrecorded_progress_topic_is_left_out(start_node, ros_node, publish, call,
+def test_an_unrecorded_progress_topic_is_left_out(start_node, ros_node, spin, publish, call,
                                                   tmp_path, read_output):
     _, executor = ros_node
-    recorder, publishers, progress = recording(start_node, ros_node, call, tmp_path / 'bag',
-                                               {'/clock': Clock}, "['/clock', '/y']")
+    recorder, publishers, progress = recording(start_node, ros_node, spin, call,
+                                               tmp_path / 'bag', {'/clock': Clock},
+                                               "['/clock', '/y']")
     assert publish(executor, publishers['/clock'], clock_at(1.5), lambda: 1.5 in progress)
     assert "progress_topics ['/y'] left out" in read_output(recorder)
