@@ -84,11 +84,6 @@ class ParkingMode:
             'base_link; ' + ('starts at the first pose' if self._autostart
                              else 'waiting for a call of park'))
 
-    @property
-    def state(self) -> str:
-        """Return 'idle', 'searching' (on the pass) or 'planned' (a plan published)."""
-        return self._state
-
     # -- inputs -------------------------------------------------------------------------------
     def on_odom(self, msg: Odometry) -> None:
         """Keep the pose of ``msg``; start or end the pass as due; publish the progress."""
@@ -98,7 +93,11 @@ class ParkingMode:
         self._pose = pose
         pending, self._pending = self._pending, []
         for reading in pending:   # the readings that came before their pose: now, or kept
-            self._on_range(reading)
+            try:
+                self._on_range(reading)
+            except ValueError as err:   # one dropped reading must not drop this pose's work
+                self._node.get_logger().warn(f'side reading dropped: {err}',
+                                             throttle_duration_sec=5.0)
         if self._autostart and self._state == 'idle':
             self._autostart = False
             self._start()

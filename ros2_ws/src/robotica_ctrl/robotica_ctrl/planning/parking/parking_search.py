@@ -141,11 +141,6 @@ class ParkingSearch:
         self._taken: set[int] = set()
 
     @property
-    def active(self) -> bool:
-        """Return whether a pass has been started."""
-        return self._origin is not None
-
-    @property
     def samples(self) -> int:
         """Return the number of readings collected on this pass."""
         return len(self._ranges)
@@ -169,7 +164,7 @@ class ParkingSearch:
                                 np.full_like(s, origin[2])])
 
     def along(self, pose: ArrayLike) -> float:
-        """Return how far [m] P_f at ``pose`` is along the pass from its start."""
+        """Return how far [m] the point (x, y) of ``pose`` is along the pass from its start."""
         if self._origin is None:
             raise ValueError('no pass has been started')
         p = np.asarray(pose, dtype=np.float64)
@@ -210,24 +205,21 @@ class ParkingSearch:
             return None
         spaces = detect_spaces(self._poses, self._ranges, self.sensor_pose, *self._limits,
                                self.detection)
-        travelled = self._sensor_along()
+        newest = self._sensor_along(-1)
         for found in spaces:
             if found.first_sample in self._taken:
                 continue
-            if travelled[-1] - travelled[found.last_sample] >= self.params.confirm_distance:
+            if newest - self._sensor_along(found.last_sample) >= self.params.confirm_distance:
                 self._taken.add(found.first_sample)
                 return found
         return None
 
-    def _sensor_along(self) -> NDArray[np.float64]:
-        """Return the sensor's distance along the pass at each sample [m]."""
-        assert self._origin is not None
-        q = np.asarray(self._poses)
-        c, s = np.cos(q[:, 2]), np.sin(q[:, 2])
-        x = q[:, 0] + c * self.sensor_pose[0] - s * self.sensor_pose[1] - self._origin[0]
-        y = q[:, 1] + s * self.sensor_pose[0] + c * self.sensor_pose[1] - self._origin[1]
-        theta = float(self._origin[2])
-        return x * math.cos(theta) + y * math.sin(theta)
+    def _sensor_along(self, sample: int) -> float:
+        """Return the sensor's distance [m] along the pass at sample number ``sample``."""
+        x, y, theta = self._poses[sample]
+        c, s = math.cos(theta), math.sin(theta)
+        mx, my = float(self.sensor_pose[0]), float(self.sensor_pose[1])
+        return self.along((x + c * mx - s * my, y + s * mx + c * my))
 
     def plan(self, found: DetectedSpace, pose: Optional[ArrayLike] = None,
              world: Optional[World] = None, budget: SearchBudget = SearchBudget(),
