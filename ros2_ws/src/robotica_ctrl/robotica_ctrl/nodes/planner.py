@@ -213,7 +213,7 @@ class PlannerNode(GuardedNode):
             dots.color = ColorRGBA(r=0.3, g=0.5, b=1.0, a=0.3)
             dots.points = [Point(x=float(x), y=float(y)) for x, y in centres]
             markers.append(dots)
-        markers += _search_markers(result.details)
+        markers += _search_markers(result.details, float(self._options['field_step']))
         for k, (point, color) in enumerate(((self._start, ColorRGBA(g=1.0, a=1.0)),
                                             (self._goal if self._parking is None
                                              else result.details.get('goal'),
@@ -230,14 +230,15 @@ class PlannerNode(GuardedNode):
         return MarkerArray(markers=markers)
 
 
-def _search_markers(details: dict) -> list[Marker]:
+def _search_markers(details: dict, field_step: float) -> list[Marker]:
     """
     Return the markers of what the search built: the graph or roadmap, the force field, a trap.
 
     The visibility graph's edges or the Voronoi roadmap's ridges (grey lines, id 4); the
-    direction of the resultant force of a potential method on its lattice (a short orange
-    segment from each lattice point, id 5); the local minimum a potential method stalled in
-    (a red sphere, id 6). At most :data:`MAX_EXPANDED_MARKERS` segments of each.
+    direction of the resultant force of a potential method on its lattice of ``field_step``
+    [m] (an orange segment of 0.7 ``field_step`` from each lattice point, id 5); the local
+    minimum a potential method stalled in (a red sphere, id 6). At most
+    :data:`MAX_EXPANDED_MARKERS` segments of each.
     """
     markers = []
     edges = details.get('graph', details.get('roadmap'))
@@ -252,10 +253,8 @@ def _search_markers(details: dict) -> list[Marker]:
     if field is not None and len(field):
         rows = np.asarray(field, dtype=float)
         rows = rows[np.isfinite(rows[:, 2])][::max(1, len(rows) // MAX_EXPANDED_MARKERS)]
-        step = float(np.min(np.diff(np.unique(rows[:, 0])))) if len(
-            np.unique(rows[:, 0])) > 1 else 0.25
-        tips = rows[:, :2] + 0.7 * step * np.column_stack([np.cos(rows[:, 2]),
-                                                           np.sin(rows[:, 2])])
+        tips = rows[:, :2] + 0.7 * field_step * np.column_stack([np.cos(rows[:, 2]),
+                                                                 np.sin(rows[:, 2])])
         arrows = Marker(ns='plan', id=5, type=Marker.LINE_LIST, action=Marker.ADD)
         arrows.scale.x = 0.015
         arrows.color = ColorRGBA(r=1.0, g=0.55, b=0.0, a=0.8)
