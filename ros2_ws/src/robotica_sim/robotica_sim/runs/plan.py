@@ -272,14 +272,17 @@ def followed_topics(scenario: Scenario) -> tuple[str, ...]:
     """
     if scenario.is_manipulator:
         return (RECORDER_PROGRESS_TOPIC,)
-    topics = [RECORDER_PROGRESS_TOPIC, '/wheel_encoders', '/odom']
-    topics += [topic for sensor, topic in (('gyro', '/imu/data'),
-                                           ('compass', '/compass/heading'))
-               if getattr(scenario.sensors, sensor).enabled]
+    topics = [RECORDER_PROGRESS_TOPIC, '/wheel_encoders', '/odom', *_step_sensor_topics(scenario)]
     topics += [mounted[0][0] for mounted in _range_topics(scenario).values() if mounted]
     if scenario.planner.method == 'parking':   # no driving on while it plans
         topics.append(PLANNER_PROGRESS_TOPIC)
     return tuple(topics)
+
+
+def _step_sensor_topics(scenario: Scenario) -> tuple[str, ...]:
+    """Return the outputs of the enabled gyro and compass, one message per step each."""
+    return tuple(SENSOR_TOPICS[sensor][0] for sensor in ('gyro', 'compass')
+                 if getattr(scenario.sensors, sensor).enabled)
 
 
 def progress_topics(scenario: Scenario) -> tuple[str, ...]:
@@ -302,9 +305,7 @@ def progress_topics(scenario: Scenario) -> tuple[str, ...]:
         telemetry = () if scenario.controller.external is not None else (
             LAW_TOPICS[law] if law in TASK_LAWS else (CONTROLLER_STATE_TOPIC,))
         return ('/clock', '/joint_states', *telemetry)
-    return ('/clock', '/ground_truth/odom', '/wheel_encoders',
-            *(t for sensor, t in (('gyro', '/imu/data'), ('compass', '/compass/heading'))
-              if getattr(scenario.sensors, sensor).enabled),
+    return ('/clock', '/ground_truth/odom', '/wheel_encoders', *_step_sensor_topics(scenario),
             *(('/odom',) if scenario.odometry.external is None else ()))
 
 
