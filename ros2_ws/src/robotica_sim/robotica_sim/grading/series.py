@@ -172,11 +172,6 @@ class RunSeries:
       ``range``, ``min_range``, ``max_range`` [m], every reading.
     - ``map_grid``: the last ``/map`` (nav_msgs/OccupancyGrid, latched) as an
       :class:`~robotica_kin.world.occupancy_grid.OccupancyGrid`.
-    - ``path_end_heading``: the yaw [rad], in (-π, π], of the orientation of the last pose of
-      the last ``/path``: the heading the vehicle should end with (a parking plan's
-      orientations are the vehicle's headings, also on reverse segments); None without a
-      ``/path``, for one without poses or with a last orientation that is not finite.
-      Equal to ``path_headings[-1]`` when that is finite.
     - ``path_headings``: the yaw [rad], in (-π, π], of the orientation of every pose of the
       last ``/path`` (N,), as ``path``'s rows (NaN where a quaternion is not finite): a plan's
       vehicle headings, or a planner's tangents, or identity orientations (0);
@@ -214,8 +209,21 @@ class RunSeries:
     ranges: dict[str, Series] = field(default_factory=dict)   # /sonar_<i>, /infrared_<i>
     map_grid: OccupancyGrid | None = None   # the last /map
     task_final: dict[str, NDArray[np.float64]] | None = None   # a task-space law's last step
-    path_end_heading: float | None = None   # [rad] yaw of the last /path pose's orientation
     path_headings: NDArray[np.float64] | None = None   # (N,) [rad] yaw of each /path pose
+
+    @property
+    def path_end_heading(self) -> float | None:
+        """
+        Return the yaw [rad] of the last ``/path`` pose's orientation: the heading to end with.
+
+        A parking plan's orientations are the vehicle's headings, also on reverse segments.
+        None without a ``/path``, for one without poses or with a last orientation that is not
+        finite (``path_headings[-1]`` otherwise).
+        """
+        headings = self.path_headings
+        if headings is None or not len(headings) or not math.isfinite(headings[-1]):
+            return None
+        return float(headings[-1])
 
     @property
     def is_manipulator(self) -> bool:
@@ -600,11 +608,8 @@ def load_run(bag: str | Path, topics: Iterable[str] | None = None) -> RunSeries:
         clock = decoded['clock'].clock
         duration = clock.sec + clock.nanosec * 1e-9
     path_points = path_times = path_headings = None
-    path_end_heading: float | None = None
     if 'path' in decoded:
         path_points, path_times, path_headings = _path(decoded['path'])
-        if len(path_headings) and math.isfinite(path_headings[-1]):
-            path_end_heading = float(path_headings[-1])
     _check_values(path, {**series, **joints}, path_points)
     status = None
     if 'status' in decoded:
@@ -626,8 +631,7 @@ def load_run(bag: str | Path, topics: Iterable[str] | None = None) -> RunSeries:
         ranges={topic: _scalar_series(rows, range_receive[topic], _RANGE_COLUMNS)
                 for topic, rows in sorted(range_rows.items(), key=lambda i: _range_key(i[0]))},
         map_grid=_grid(decoded['map']) if 'map' in decoded else None,
-        task_final=_task_final(decoded), path_end_heading=path_end_heading,
-        path_headings=path_headings)
+        task_final=_task_final(decoded), path_headings=path_headings)
 
 
 def _range_key(topic: str) -> tuple[str, int]:

@@ -474,7 +474,7 @@ def test_final_pose_error_against_the_last_path_pose():
     truth = pose_series(t, np.linspace(0.0, 5.3, 21), np.linspace(0.0, 2.4, 21),
                         np.linspace(0.0, math.radians(80.0), 21))
     run = replace(make_run(truth=truth, path=[[0.0, 0.0], [5.0, 0.0], [5.0, 2.0]]),
-                  path_end_heading=math.radians(90.0))
+                  path_headings=np.array([0.0, math.radians(90.0), math.radians(90.0)]))
     m = compute_metrics(run).values
     assert m['final_position_error'] == pytest.approx(0.5, abs=1e-12)
     assert m['final_heading_error'] == pytest.approx(math.radians(10.0), abs=1e-12)
@@ -486,7 +486,7 @@ def test_final_heading_error_wraps_across_pi():
     # Parked in reverse: the last pose's orientation is 180 deg (against the travel), the
     # truth ends at -179 deg, 1 deg away; the truth ends on a one-pose path's only pose.
     truth = pose_series([0.0, 1.0], [1.0, 2.0], [1.0, 1.0], [0.0, math.radians(-179.0)])
-    run = replace(make_run(truth=truth, path=[[2.0, 1.0]]), path_end_heading=math.pi)
+    run = replace(make_run(truth=truth, path=[[2.0, 1.0]]), path_headings=np.array([math.pi]))
     m = compute_metrics(run).values
     assert m['final_heading_error'] == pytest.approx(math.radians(1.0), abs=1e-12)
     assert m['final_position_error'] == 0.0
@@ -498,7 +498,8 @@ def test_final_pose_errors_absent_with_the_reason():
     absent = compute_metrics(make_run(truth=truth)).absent
     assert absent['final_position_error'] == absent['final_heading_error'] == (
         'needs topic /path, which the bag lacks')
-    no_truth = compute_metrics(replace(make_run(path=STRAIGHT), path_end_heading=0.0)).absent
+    no_truth = compute_metrics(replace(make_run(path=STRAIGHT),
+                                       path_headings=np.zeros(len(STRAIGHT)))).absent
     assert no_truth['final_position_error'] == no_truth['manoeuvres'] == (
         'needs topic /ground_truth/odom, which the bag lacks')
     unoriented = compute_metrics(make_run(truth=truth, path=STRAIGHT))   # heading None

@@ -32,8 +32,7 @@ def oriented_run(postures, x, y, theta, v=None):
         'theta': np.asarray(theta, dtype=float), 'v': np.ones(n) if v is None else v,
         'vy': np.zeros(n), 'w': np.zeros(n)})
     return RunSeries(Path('synthetic'), None, 0.0, {TOPICS['truth']: n, TOPICS['path']: 1},
-                     plan[:, :2], None, truth, *[None] * 10, path_headings=plan[:, 2],
-                     path_end_heading=float(plan[-1, 2]))
+                     plan[:, :2], None, truth, *[None] * 10, path_headings=plan[:, 2])
 
 
 def out_and_back():
